@@ -11,8 +11,8 @@
 //       number of matching edges in the whole run
 //   BUDGET <cycles>
 //       the program must reach its end (cli; sleep) within this many cycles
-// <pin> is a port pin (B1, D6, ...) or an output-compare name (OC1A, ...)
-// mapped per MCU; <edge> is ^ (rising), v (falling) or * (either).
+// <pin> is a port pin (B1, D6, ...), an output-compare name (OC1A, ...) or
+// MARK (the marker pin), mapped per MCU; <edge> is ^ (rising), v (falling) or * (either).
 //
 // Edge timestamps are avr->cycle when the pin IRQ fires: the first cycle of
 // the instruction that writes the port, or, for timer outputs, the cycle at
@@ -74,13 +74,14 @@ void pin_changed(avr_irq_t*, uint32_t value, void* param) {
 
 void no_sleep(avr_t*, avr_cycle_count_t) {}  // default syncs to wall-clock time
 
-// Output-compare pins of the supported parts.
+// Output-compare pins of the supported parts, and the marker pin the
+// programs use (calib.h MARK_*: a port with no timer output in use).
 std::optional<std::pair<char, int>> oc_pin(const std::string& mcu, const std::string& oc) {
   static const std::map<std::string, std::map<std::string, std::pair<char, int>>> table = {
-      {"atmega328p", {{"OC0A", {'D', 6}}, {"OC0B", {'D', 5}}, {"OC1A", {'B', 1}},
+      {"atmega328p", {{"MARK", {'D', 0}}, {"OC0A", {'D', 6}}, {"OC0B", {'D', 5}}, {"OC1A", {'B', 1}},
                       {"OC1B", {'B', 2}}, {"OC2A", {'B', 3}}, {"OC2B", {'D', 3}}}},
-      {"atmega32", {{"OC0", {'B', 3}}, {"OC1A", {'D', 5}}, {"OC1B", {'D', 4}}, {"OC2", {'D', 7}}}},
-      {"atmega16", {{"OC0", {'B', 3}}, {"OC1A", {'D', 5}}, {"OC1B", {'D', 4}}, {"OC2", {'D', 7}}}},
+      {"atmega32", {{"MARK", {'B', 0}}, {"OC0", {'B', 3}}, {"OC1A", {'D', 5}}, {"OC1B", {'D', 4}}, {"OC2", {'D', 7}}}},
+      {"atmega16", {{"MARK", {'B', 0}}, {"OC0", {'B', 3}}, {"OC1A", {'D', 5}}, {"OC1B", {'D', 4}}, {"OC2", {'D', 7}}}},
   };
   auto m = table.find(mcu);
   if (m == table.end()) return std::nullopt;
@@ -136,7 +137,7 @@ int main(int argc, char** argv) {
   // --- expectations from the program source ---
   std::ifstream src(files[1]);
   if (!src) { std::fprintf(stderr, "cannot read %s\n", files[1].c_str()); return 2; }
-  const std::string pin = R"(([A-D][0-7]|OC[0-2][AB]?)([\^v*]))";
+  const std::string pin = R"(([A-D][0-7]|OC[0-2][AB]?|MARK)([\^v*]))";
   const std::regex re_interval(R"(EXPECT\s+(\S+):\s*)" + pin + R"(#(\d+)\s*->\s*)" + pin +
                                R"(#(\d+)\s*=\s*(-?\d+))");
   const std::regex re_count(R"(EXPECT\s+(\S+):\s*count\s+)" + pin + R"(\s*=\s*(\d+))");

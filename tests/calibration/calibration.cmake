@@ -11,7 +11,7 @@
 #                                 and start to fail if stock ever gets fixed)
 #   tests/calibration/run-stock.sh  prints the stock measurements themselves
 set(_calib_dir ${CMAKE_CURRENT_LIST_DIR})
-set(_calib_mcus atmega328p)
+set(_calib_mcus atmega328p atmega32)   # both at 16 MHz
 set(_calib_bin ${CMAKE_BINARY_DIR}/calibration-avr)
 if(NOT AVRMOTION_TOOLCHAIN)
   set(AVRMOTION_TOOLCHAIN ${CMAKE_SOURCE_DIR}/toolchain/avr-gcc.cmake)
@@ -21,12 +21,14 @@ endif()
 set(_calib_stock_faults
   irq_response irq_reentry sei_one ctc_top0 tcnt_preload tcnt_write foc oc_no_phantom)
 
+string(REPLACE ";" "|" _calib_mcus_arg "${_calib_mcus}")
 ExternalProject_Add(calibration_programs
   SOURCE_DIR ${_calib_dir}/programs
   BINARY_DIR ${_calib_bin}
+  LIST_SEPARATOR |
   CMAKE_ARGS -DCMAKE_TOOLCHAIN_FILE=${AVRMOTION_TOOLCHAIN}
              -DCMAKE_BUILD_TYPE=Release
-             "-DCALIB_MCUS=${_calib_mcus}"
+             -DCALIB_MCUS=${_calib_mcus_arg}
   INSTALL_COMMAND ""
   BUILD_ALWAYS ON)
 
@@ -43,6 +45,10 @@ function(_calib_tests runner label stock)
   foreach(mcu IN LISTS _calib_mcus)
     foreach(src IN LISTS programs)
       get_filename_component(name ${src} NAME_WE)
+      file(STRINGS ${src} only REGEX "MCUS:")   # same rule as programs/
+      if(only AND NOT only MATCHES "MCUS:.*[ \t]${mcu}([ \t]|$)")
+        continue()
+      endif()
       set(t ${label}.${name}.${mcu})
       add_test(NAME ${t}
         COMMAND ${runner} --mcu ${mcu} --freq 16000000 ${_calib_bin}/${name}-${mcu}.elf ${src})

@@ -21,6 +21,33 @@
 #define IO(r)  _SFR_IO_ADDR(r)
 #define MEM(r) _SFR_MEM_ADDR(r)
 
+/* ATmega16/32 spellings of the ATmega328P timer-1 names used here, and the
+ * OC1A/OC1B pins of each part (the runner maps "OC1A" etc. the same way).
+ * Timer-1 registers are always accessed with LDS/STS (2 cycles on every
+ * part), so cycle counts do not change between parts. */
+#ifndef TIMSK1
+#define TIMSK1 TIMSK
+#define TIFR1  TIFR
+#endif
+#if defined(__AVR_ATmega16__) || defined(__AVR_ATmega32__)
+#define OC1A_DDR DDRD
+#define OC1A_BIT 5
+#define OC1B_DDR DDRD
+#define OC1B_BIT 4
+#define MARK_PORT PORTB	/* marker pin: PB0 (PORTD carries OC1A/OC1B) */
+#define MARK_DDR  DDRB
+#else
+#define OC1A_DDR DDRB
+#define OC1A_BIT 1
+#define OC1B_DDR DDRB
+#define OC1B_BIT 2
+#define MARK_PORT PORTD	/* marker pin: PD0 (PORTB carries OC1A/OC1B) */
+#define MARK_DDR  DDRD
+#endif
+/* simavr does not model the OCnx override of the PORT bit: a plain OUT to
+ * the port of an OC pin would drive that pin too. Markers therefore use
+ * OUT on MARK_PORT, which holds no OC pin in use. */
+
 /* n single-cycle instructions: keeps the CPU on a 1-cycle instruction grid,
  * so an interrupt or timer event is seen exactly at its cycle. */
 .macro NOPS n

@@ -17,6 +17,7 @@
  *   32 * (1 + 6) = 224
  */
 #include "calib.h"
+// MCUS: atmega328p (uses the A/B compare units of timers 0 and 2)
 
 	.global main
 main:

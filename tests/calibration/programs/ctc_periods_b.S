@@ -9,6 +9,7 @@
  *   1 * (1 + 127) = 128
  */
 #include "calib.h"
+// MCUS: atmega328p (uses the A/B compare units of timers 0 and 2)
 // BUDGET 200000
 
 	.global main

@@ -10,8 +10,7 @@
 
 	.global main
 main:
-	ldi r16, (1 << PB1)
-	out IO(DDRB), r16
+	sbi IO(OC1A_DDR), OC1A_BIT
 	STS16 MEM(OCR1AL), 0
 	ldi r16, (1 << COM1A0)
 	sts MEM(TCCR1A), r16

@@ -13,8 +13,8 @@
 
 	.global main
 main:
-	ldi r16, 0x03		; PB0 marker, PB1 = OC1A
-	out IO(DDRB), r16
+	sbi IO(DDRB), 0		; PB0: marker
+	sbi IO(OC1A_DDR), OC1A_BIT
 	STS16 MEM(OCR1AL), 99
 	ldi r16, (1 << COM1A0)	; toggle OC1A on compare match
 	sts MEM(TCCR1A), r16
