@@ -112,7 +112,7 @@ else()
 endif()
 
 # --- 2. patched copy (redone when the patch set changes) --------------------
-file(GLOB _sa_patches ${CMAKE_CURRENT_LIST_DIR}/patches/*.patch)
+file(GLOB _sa_patches CONFIGURE_DEPENDS ${CMAKE_CURRENT_LIST_DIR}/patches/*.patch)
 list(SORT _sa_patches)
 set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${_sa_patches})
 set(_sa_id "${_sa_pristine}")
