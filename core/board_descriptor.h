@@ -1,0 +1,53 @@
+// The board descriptor: a fixed-layout record that every firmware image
+// carries in its ELF (section .avrmotion_board, outside flash and RAM), so the
+// simulator decodes any board's outputs without a second copy of its pin map.
+//
+// Contract
+//   The layout is identical on the AVR and on the host: every field sits at a
+//   naturally aligned offset and the sizes are checked below. A pin is encoded
+//   as (port << 4) | bit with port 0 = A ... 3 = D; kNoPin = not connected.
+//   Bump kBoardDescriptorMagic when the layout changes.
+#pragma once
+#include <stdint.h>
+
+namespace am {
+
+constexpr uint8_t kNoPin = 0xFF;
+constexpr uint8_t pin_code(char port, uint8_t bit) { return uint8_t(((port - 'A') << 4) | bit); }
+constexpr char pin_port(uint8_t code) { return char('A' + (code >> 4)); }
+constexpr uint8_t pin_bit(uint8_t code) { return code & 7; }
+
+enum class AxisKind : uint8_t {
+  none = 0,
+  step_dir = 1,      // pins: step, dir, enable; option bit0: enable active low
+  shield_latch = 2,  // pins: latch, clock, data, output-enable (active low);
+                     // option: stepper number on the shield (1 or 2)
+  unipolar4 = 3,     // pins: IN1..IN4 (A+, B+, A-, B-)
+};
+
+struct AxisDescriptor {
+  char name;              // 'X', 'Y', 'Z', 'E'
+  AxisKind kind;
+  uint8_t pins[4];
+  uint8_t option;
+  uint8_t reserved;
+  uint32_t steps_per_m;   // full steps per metre of travel
+};
+
+constexpr uint8_t kMaxAxes = 4;
+
+struct BoardDescriptor {
+  char magic[4];          // "AMB1"
+  char board[12];         // NUL-terminated
+  char mcu[12];           // simavr's part name, NUL-terminated
+  uint32_t f_cpu;
+  uint32_t baud;
+  uint8_t axis_count;
+  uint8_t reserved[3];
+  AxisDescriptor axes[kMaxAxes];
+};
+
+static_assert(sizeof(AxisDescriptor) == 12, "descriptor layout must match on host and AVR");
+static_assert(sizeof(BoardDescriptor) == 88, "descriptor layout must match on host and AVR");
+
+}  // namespace am

@@ -1,0 +1,79 @@
+// The step queue: the only channel between the planner (main loop) and the
+// step interrupt.
+//
+// Contract
+//   A StepSegment is a run of `count` steps, each preceded by `interval` timer
+//   ticks, on the axes in `axes` (bit i = axis i) with directions `dirs`
+//   (bit i set = forward). The main loop pushes, the step interrupt pops; the
+//   queue is single-producer single-consumer and lock-free because each index
+//   is written by one side only and is one byte wide (atomic on the AVR).
+//
+//   The interval is stored pre-split for a 16-bit timer: `wraps` periods of
+//   wrap_compare + 1 ticks followed by a final period of compare + 1 ticks.
+//   The interrupt therefore never divides or compares 32-bit numbers; all of
+//   that happens in make().
+#pragma once
+#include <stdint.h>
+
+namespace am {
+
+struct StepSegment {
+  uint16_t count;         // steps in this segment, >= 1
+  uint16_t compare;       // compare value of the final period of an interval
+  uint16_t wrap_compare;  // compare value of each earlier period
+  uint8_t wraps;          // periods before the final one
+  uint8_t axes;           // which axes step
+  uint8_t dirs;           // forward bits
+
+  // Splits `interval` ticks (1 .. kMaxSegmentInterval) into wraps + 1 timer
+  // periods of near-equal length. Equal periods, rather than full 65536-tick
+  // wraps plus a remainder, keep every period of a long interval above 32768
+  // ticks, so a period never ends before the interrupt that started it has
+  // written its compare value.
+  static StepSegment make(uint32_t interval, uint16_t count, uint8_t axes, uint8_t dirs) {
+    StepSegment s;
+    s.count = count;
+    s.wraps = uint8_t((interval - 1) >> 16);
+    const uint32_t period = interval / (s.wraps + 1u);
+    s.wrap_compare = uint16_t(period - 1);
+    s.compare = uint16_t(interval - s.wraps * period - 1);
+    s.axes = axes;
+    s.dirs = dirs;
+    return s;
+  }
+  uint32_t interval() const { return uint32_t(wraps) * (wrap_compare + 1u) + compare + 1u; }
+};
+
+// Longest interval a segment can hold (about 1.07 s at 16 MHz).
+constexpr uint32_t kMaxSegmentInterval = 256ul * 65536ul;
+
+template <uint8_t Size>
+class StepQueue {
+  static_assert((Size & (Size - 1)) == 0 && Size >= 2, "size must be a power of two");
+
+ public:
+  bool empty() const { return head_ == tail_; }
+  bool full() const { return uint8_t(head_ - tail_) == Size; }
+  uint8_t size() const { return uint8_t(head_ - tail_); }
+
+  // Producer side. Returns false when full.
+  bool push(const StepSegment& s) {
+    if (full()) return false;
+    slots_[head_ & (Size - 1)] = s;
+    head_ = uint8_t(head_ + 1);
+    return true;
+  }
+
+  // Consumer side: the oldest segment, valid while !empty().
+  StepSegment& front() { return slots_[tail_ & (Size - 1)]; }
+  void pop() { tail_ = uint8_t(tail_ + 1); }
+
+  void clear() { tail_ = head_; }
+
+ private:
+  StepSegment slots_[Size];
+  volatile uint8_t head_ = 0;
+  volatile uint8_t tail_ = 0;
+};
+
+}  // namespace am

@@ -1,0 +1,5 @@
+// The board this image is built for. CMake passes the header of one board
+// (firmware/boards/<name>.h) as AVRMOTION_BOARD_HEADER; nothing else in the
+// firmware names a board.
+#pragma once
+#include AVRMOTION_BOARD_HEADER

@@ -1,0 +1,39 @@
+// Board: ATmega16 lathe controller (seed-004 section 4).
+// avrmotion-board: mcu=atmega16 f_cpu=16000000,8000000
+//
+// Leadscrew on a step/dir driver (axis Z): step PC0, direction PC1, enable
+// PC7 (active low); a 200-step motor on the 3.175 mm leadscrew gives
+// 62992 steps per metre. Also on the board: HD44780 on PORTA (PA0-PA3 data,
+// PA4 RS, PA5 RW, PA6 E), 4x4 keypad on PORTB (PB7..PB4 columns out, PB3..PB0
+// rows in), motor encoder INT0 (PD2), spindle encoder INT1 (PD3), spindle index
+// PD6, limit switch PD7, L298 enable PWM on OC1A (PD5). The thesis put the L298
+// direction on PD0/PD1, which are the UART here; the servo option will move
+// them. PC2..PC5 need JTAG off, which main() does on every ATmega16/32.
+#pragma once
+#include "../../hal/avr/gpio.h"
+#include "../drivers/axis_set.h"
+#include "../drivers/step_dir_axis.h"
+
+namespace board {
+
+using hal::Pin;
+using Axes = AxisSet<StepDirAxis<'Z', Pin<'C', 0>, Pin<'C', 1>, Pin<'C', 7>, true, 62992>>;
+
+constexpr uint32_t kBaud = 115200;
+constexpr uint32_t kStepTimerHz = F_CPU;
+constexpr uint32_t kMaxStepRate = F_CPU / 800;  // 20 kHz at 16 MHz, 10 kHz at 8 MHz
+constexpr uint32_t kDefaultRate = 1000;
+constexpr uint32_t kDefaultAccel = 4000;
+constexpr uint8_t kStepPulsePadCycles = F_CPU / 1000000 * 3 / 2;  // >= 1.9 us with bookkeeping
+
+inline void init() {
+  Pin<'D', 5>::low();  // L298 enable: motor free until the servo runs
+  Pin<'D', 5>::output();
+  Pin<'D', 2>::input_pullup();
+  Pin<'D', 3>::input_pullup();
+  Pin<'D', 6>::input_pullup();
+  Pin<'D', 7>::input_pullup();
+  Axes::init();
+}
+
+}  // namespace board

@@ -1,0 +1,43 @@
+// Board: ATmega32 printer/CNC controller (seed-002).
+// avrmotion-board: mcu=atmega32 f_cpu=16000000
+//
+// X Y Z E on step/dir drivers: steps PC0/PC2/PC4/PC6, directions
+// PC1/PC3/PC5/PC7, enables PB0..PB3 (active low). Endstops (switch to ground,
+// pulled up): X/Y/Z min on PD2/PD3/PD4, max on PA5/PA6/PA7. Thermistor on
+// ADC2 (PA2), heater MOSFET on OC2 (PD7), TEMP_OK output on PD6. One step is one
+// basic length unit of 1 um (the seed's BLU_PER_MM = 1000).
+#pragma once
+#include "../../hal/avr/gpio.h"
+#include "../drivers/axis_set.h"
+#include "../drivers/step_dir_axis.h"
+
+namespace board {
+
+using hal::Pin;
+using Axes = AxisSet<StepDirAxis<'X', Pin<'C', 0>, Pin<'C', 1>, Pin<'B', 0>, true, 1000000>,
+                     StepDirAxis<'Y', Pin<'C', 2>, Pin<'C', 3>, Pin<'B', 1>, true, 1000000>,
+                     StepDirAxis<'Z', Pin<'C', 4>, Pin<'C', 5>, Pin<'B', 2>, true, 1000000>,
+                     StepDirAxis<'E', Pin<'C', 6>, Pin<'C', 7>, Pin<'B', 3>, true, 1000000>>;
+
+constexpr uint32_t kBaud = 115200;
+constexpr uint32_t kStepTimerHz = F_CPU;
+constexpr uint32_t kMaxStepRate = 40000;
+constexpr uint32_t kDefaultRate = 4000;    // steps/s (4 mm/s)
+constexpr uint32_t kDefaultAccel = 20000;  // steps/s^2
+constexpr uint8_t kStepPulsePadCycles = 24;  // >= 1.9 us with the bookkeeping (DRV8825)
+
+inline void init() {
+  Pin<'D', 7>::low();  // heater off before the pin becomes an output
+  Pin<'D', 7>::output();
+  Pin<'D', 6>::low();  // TEMP_OK low: not at temperature
+  Pin<'D', 6>::output();
+  Pin<'D', 2>::input_pullup();
+  Pin<'D', 3>::input_pullup();
+  Pin<'D', 4>::input_pullup();
+  Pin<'A', 5>::input_pullup();
+  Pin<'A', 6>::input_pullup();
+  Pin<'A', 7>::input_pullup();
+  Axes::init();
+}
+
+}  // namespace board

@@ -1,0 +1,33 @@
+// Board: Arduino Uno + Adafruit Motor Shield v1 (seed-000 section 1).
+// avrmotion-board: mcu=atmega328p f_cpu=16000000
+//
+// Two bipolar steppers through the shield's 74HC595 (D12 latch, D4 clock,
+// D7 output enable active low, D8 data) and two L293D whose enables are D11/D3
+// (stepper 1, axis X) and D5/D6 (stepper 2, axis Y). Travel is counted for a
+// 200-step motor on an 8 mm-lead screw: 25 full steps per mm.
+#pragma once
+#include "../../hal/avr/gpio.h"
+#include "../../hal/avr/latch595.h"
+#include "../drivers/axis_set.h"
+#include "../drivers/shield_stepper.h"
+
+namespace board {
+
+using hal::Pin;
+using Latch = hal::Latch595<Pin<'B', 4>, Pin<'D', 4>, Pin<'B', 0>, Pin<'D', 7>>;
+using Axes = AxisSet<ShieldStepper<'X', 1, Latch, Pin<'B', 3>, Pin<'D', 3>, 25000>,
+                     ShieldStepper<'Y', 2, Latch, Pin<'D', 5>, Pin<'D', 6>, 25000>>;
+
+constexpr uint32_t kBaud = 115200;
+constexpr uint32_t kStepTimerHz = F_CPU;
+constexpr uint32_t kMaxStepRate = 20000;
+constexpr uint32_t kDefaultRate = 400;   // steps/s
+constexpr uint32_t kDefaultAccel = 800;  // steps/s^2
+constexpr uint8_t kStepPulsePadCycles = 0;  // coils, not pulses: no width to meet
+
+inline void init() {
+  Latch::init();
+  Axes::init();
+}
+
+}  // namespace board

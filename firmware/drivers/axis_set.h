@@ -1,0 +1,60 @@
+// A board's axes as a compile-time list. The step interrupt calls
+// pulse_begin/pulse_end with the segment's axis and direction masks; the loops
+// below unroll at compile time, so an axis costs one bit test when idle.
+//
+// Every axis type provides, as static members:
+//   name, descriptor(), init(), energise(), release(),
+//   set_direction(bool forward), pulse_begin(bool forward), pulse_end().
+// The set also yields the board descriptor's axis table (descriptor.cpp).
+#pragma once
+#include <stdint.h>
+
+#include "../../core/board_descriptor.h"
+
+template <typename... Axes>
+struct AxisSet;
+
+template <>
+struct AxisSet<> {
+  static constexpr uint8_t count = 0;
+  static void init() {}
+  static void release() {}
+  static void energise(uint8_t, uint8_t) {}
+  static void set_direction(uint8_t, uint8_t, uint8_t) {}
+  static void pulse_begin(uint8_t, uint8_t, uint8_t) {}
+  static void pulse_end(uint8_t, uint8_t) {}
+  static int8_t index_of(char, uint8_t = 0) { return -1; }
+  static char name_at(uint8_t) { return '?'; }
+};
+
+template <typename First, typename... Rest>
+struct AxisSet<First, Rest...> {
+  using Tail = AxisSet<Rest...>;
+  static constexpr uint8_t count = 1 + sizeof...(Rest);
+
+  static void init() { First::init(); Tail::init(); }
+  static void release() { First::release(); Tail::release(); }
+
+  // The `bit` argument is the mask bit of First; the public entry points start
+  // at bit 1.
+  static void energise(uint8_t axes, uint8_t bit = 1) {
+    if (axes & bit) First::energise();
+    Tail::energise(axes, uint8_t(bit << 1));
+  }
+  static void set_direction(uint8_t axes, uint8_t dirs, uint8_t bit = 1) {
+    if (axes & bit) First::set_direction(dirs & bit);
+    Tail::set_direction(axes, dirs, uint8_t(bit << 1));
+  }
+  static void pulse_begin(uint8_t axes, uint8_t dirs, uint8_t bit = 1) {
+    if (axes & bit) First::pulse_begin(dirs & bit);
+    Tail::pulse_begin(axes, dirs, uint8_t(bit << 1));
+  }
+  static void pulse_end(uint8_t axes, uint8_t bit = 1) {
+    if (axes & bit) First::pulse_end();
+    Tail::pulse_end(axes, uint8_t(bit << 1));
+  }
+  static int8_t index_of(char name, uint8_t index = 0) {
+    return First::name == name ? int8_t(index) : Tail::index_of(name, uint8_t(index + 1));
+  }
+  static char name_at(uint8_t index) { return index == 0 ? First::name : Tail::name_at(uint8_t(index - 1)); }
+};

@@ -1,0 +1,142 @@
+#include "protocol.h"
+
+#include <avr/pgmspace.h>
+
+#include "../core/command_parser.h"
+#include "../core/line_reader.h"
+#include "../hal/avr/uart.h"
+#include "board.h"
+#include "planner.h"
+#include "step_engine.h"
+
+namespace protocol {
+namespace {
+
+using Reader = am::LineReader<80>;
+Reader reader;
+am::Command command;
+bool waiting;          // `command` is parsed and waits for its turn
+// Set when received bytes were lost. The gap lies somewhere after the bytes
+// still in the receive ring, so every line completed from then on is refused
+// until one ends with the ring empty: a line spliced across the gap can never
+// run as a different, valid command.
+bool tainted;
+
+void ok() { hal::uart::write_P(PSTR("ok\n")); }
+
+void error(const char* progmem_reason) {
+  hal::uart::write_P(PSTR("error: "));
+  hal::uart::write_P(progmem_reason);
+  hal::uart::write('\n');
+}
+
+const char* parse_error_text(am::ParseError e) {
+  switch (e) {
+    case am::ParseError::unknown_command: return PSTR("unknown command");
+    case am::ParseError::bad_word: return PSTR("bad word (expected letter and number)");
+    case am::ParseError::bad_number: return PSTR("bad number");
+    case am::ParseError::out_of_range: return PSTR("number out of range");
+    case am::ParseError::duplicate_word: return PSTR("word given twice");
+    case am::ParseError::missing_axis: return PSTR("MOVE needs an axis word");
+    case am::ParseError::two_axes: return PSTR("MOVE takes one axis");
+    case am::ParseError::unexpected_word: return PSTR("word not allowed here");
+    default: return PSTR("empty line");
+  }
+}
+
+bool motion_done() { return planner::idle() && !engine::busy(); }
+
+// Tries to run the waiting command; false while it must keep waiting.
+bool execute(const am::Command& c) {
+  switch (c.kind) {
+    case am::CommandKind::move: {
+      if (!planner::idle()) return false;
+      const int8_t axis = board::Axes::index_of(c.axis);
+      if (axis < 0) {
+        error(PSTR("no such axis on this board"));
+        return true;
+      }
+      am::RampConfig cfg{board::kStepTimerHz,
+                         (c.given & am::kGivenRate) ? c.rate : board::kDefaultRate,
+                         (c.given & am::kGivenAccel) ? c.accel : board::kDefaultAccel, 0};
+      cfg.decel = (c.given & am::kGivenDecel) ? c.decel : cfg.accel;
+      switch (am::SpeedRamp::check(cfg)) {
+        case am::RampError::zero_speed: error(PSTR("speed must be above 0")); return true;
+        case am::RampError::zero_accel: error(PSTR("acceleration must be above 0")); return true;
+        default: break;
+      }
+      if (cfg.max_rate > board::kMaxStepRate) {
+        cfg.max_rate = board::kMaxStepRate;
+        hal::uart::write_P(PSTR("warning: F clamped to "));
+        hal::uart::write_u32(board::kMaxStepRate);
+        hal::uart::write('\n');
+      }
+      if (c.steps != 0) planner::start(uint8_t(axis), c.steps, cfg);
+      ok();
+      return true;
+    }
+    case am::CommandKind::position:
+      if (!motion_done()) return false;
+      hal::uart::write_P(PSTR("pos"));
+      for (uint8_t i = 0; i < board::Axes::count; ++i) {
+        hal::uart::write(' ');
+        hal::uart::write(uint8_t(board::Axes::name_at(i)));
+        hal::uart::write(':');
+        hal::uart::write_i32(planner::position(i));
+      }
+      hal::uart::write('\n');
+      ok();
+      return true;
+    case am::CommandKind::release:
+      if (!motion_done()) return false;
+      board::Axes::release();
+      ok();
+      return true;
+    case am::CommandKind::wait:
+      if (!motion_done()) return false;
+      ok();
+      return true;
+  }
+  return true;
+}
+
+void on_line(Reader::Line line) {
+  if (tainted) {
+    tainted = hal::uart::available();
+    error(PSTR("serial overrun, line dropped"));
+  } else if (line == Reader::Line::too_long) {
+    error(PSTR("line too long (max 80 characters)"));
+  } else {
+    const am::ParseError e = am::parse_command(reader.text(), command);
+    if (e == am::ParseError::none) {
+      waiting = true;
+    } else {
+      error(parse_error_text(e));
+    }
+  }
+}
+
+}  // namespace
+
+void banner() {
+  hal::uart::write_P(PSTR("avrmotion " AVRMOTION_VERSION " board="));
+  hal::uart::write_P(PSTR(AVRMOTION_BOARD_NAME " mcu=" AVRMOTION_MCU_NAME));
+  hal::uart::write_P(PSTR(" f_cpu="));
+  hal::uart::write_u32(F_CPU);
+  hal::uart::write('\n');
+}
+
+void poll() {
+  planner::pump();
+  if (waiting) {
+    if (!execute(command)) return;
+    waiting = false;
+  }
+  while (!waiting && hal::uart::available()) {
+    if (hal::uart::overrun()) tainted = true;
+    const Reader::Line line = reader.feed(char(hal::uart::read()));
+    if (line != Reader::Line::none) on_line(line);
+  }
+}
+
+}  // namespace protocol

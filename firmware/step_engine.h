@@ -1,0 +1,32 @@
+// The step engine: turns queued StepSegments into step pulses, timed by
+// Timer1 in CTC mode (hal/avr/step_timer.h).
+//
+// Contract
+//   The main loop pushes segments with push() (false = queue full, try again
+//   later) and never touches the timer; the engine starts itself on the first
+//   push after it went idle and stops itself when the queue runs dry. busy() is
+//   true while steps remain. The interrupt only pops segments; it never
+//   computes a ramp: that happens in the planner, outside interrupt context.
+//
+// Why it is built this way
+//   The timer, not software, measures every interval: the compare match fires
+//   exactly `interval` cycles after the previous one, whatever the interrupt
+//   latency was, so latency can delay a pulse by a few cycles but can never
+//   accumulate into the schedule. Intervals longer than the 16-bit timer are
+//   split by the planner into whole 65536-tick wraps plus a remainder, and the
+//   interrupt merely counts wraps, so it needs no 32-bit arithmetic.
+#pragma once
+#include <stdint.h>
+
+#include "../core/step_queue.h"
+
+namespace engine {
+
+constexpr uint8_t kQueueSize = 16;
+
+void init();
+bool push(const am::StepSegment& segment);
+bool busy();
+bool queue_full();
+
+}  // namespace engine

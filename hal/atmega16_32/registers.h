@@ -1,0 +1,44 @@
+// ATmega16 / ATmega32 register facts the shared HAL code needs (the two parts
+// share their I/O map; datasheets ch. "I/O Ports", "USART", "16-bit
+// Timer/Counter1"). Included through hal/avr/family.h only.
+#pragma once
+#include <avr/io.h>
+
+namespace hal {
+namespace family {
+
+// I/O address of PINx; DDRx and PORTx follow at +1 and +2.
+constexpr uint8_t pin_io_address(char port) {
+  return port == 'A' ? 0x19 : port == 'B' ? 0x16 : port == 'C' ? 0x13 : port == 'D' ? 0x10 : 0xFF;
+}
+
+}  // namespace family
+}  // namespace hal
+
+#define HAL_UDR UDR
+#define HAL_UCSRA UCSRA
+#define HAL_UCSRB UCSRB
+#define HAL_UCSRC UCSRC
+#define HAL_UBRRH UBRRH
+#define HAL_UBRRL UBRRL
+#define HAL_U2X U2X
+#define HAL_RXEN RXEN
+#define HAL_TXEN TXEN
+#define HAL_RXCIE RXCIE
+#define HAL_UDRIE UDRIE
+#define HAL_DOR DOR
+#define HAL_FE FE
+// UCSRC shares its address with UBRRH: URSEL selects UCSRC.
+#define HAL_UCSRC_8N1 (_BV(URSEL) | _BV(UCSZ1) | _BV(UCSZ0))
+#define HAL_UART_RX_VECT USART_RXC_vect
+#define HAL_UART_UDRE_VECT USART_UDRE_vect
+
+#define HAL_TIMER1_MASK TIMSK
+#define HAL_TIMER1_FLAGS TIFR
+
+// PC2..PC5 carry JTAG while the JTAGEN fuse is programmed (the factory
+// setting); JTD must be written twice within four cycles to free them.
+inline void hal_disable_jtag() {
+  MCUCSR = _BV(JTD);
+  MCUCSR = _BV(JTD);
+}

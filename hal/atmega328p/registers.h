@@ -1,0 +1,37 @@
+// ATmega328P register facts the shared HAL code needs (datasheet 2015, ch. 14,
+// 16, 20). Included through hal/avr/family.h only.
+#pragma once
+#include <avr/io.h>
+
+namespace hal {
+namespace family {
+
+// I/O address of PINx; DDRx and PORTx follow at +1 and +2 on every AVR we use.
+constexpr uint8_t pin_io_address(char port) {
+  return port == 'B' ? 0x03 : port == 'C' ? 0x06 : port == 'D' ? 0x09 : 0xFF;
+}
+
+}  // namespace family
+}  // namespace hal
+
+#define HAL_UDR UDR0
+#define HAL_UCSRA UCSR0A
+#define HAL_UCSRB UCSR0B
+#define HAL_UCSRC UCSR0C
+#define HAL_UBRRH UBRR0H
+#define HAL_UBRRL UBRR0L
+#define HAL_U2X U2X0
+#define HAL_RXEN RXEN0
+#define HAL_TXEN TXEN0
+#define HAL_RXCIE RXCIE0
+#define HAL_UDRIE UDRIE0
+#define HAL_DOR DOR0
+#define HAL_FE FE0
+#define HAL_UCSRC_8N1 (_BV(UCSZ01) | _BV(UCSZ00))
+#define HAL_UART_RX_VECT USART_RX_vect
+#define HAL_UART_UDRE_VECT USART_UDRE_vect
+
+#define HAL_TIMER1_MASK TIMSK1
+#define HAL_TIMER1_FLAGS TIFR1
+
+inline void hal_disable_jtag() {}

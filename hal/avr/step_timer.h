@@ -1,0 +1,37 @@
+// Timer1 as the step clock: CTC mode (TOP = OCR1A), no prescaler, so one tick
+// is one CPU cycle and a period of N ticks is exactly N cycles. The compare-A
+// interrupt (TIMER1_COMPA_vect) is the step interrupt; the firmware defines it.
+//
+// In CTC mode OCR1A is not double-buffered: a value written inside the
+// interrupt takes effect for the period that has just begun, which is what the
+// step engine relies on. Writes must land before the counter passes them, so
+// the shortest period is bounded by the interrupt's own length (the engine
+// clamps rates accordingly).
+#pragma once
+#include <stdint.h>
+#include "family.h"
+
+namespace hal {
+namespace step_timer {
+
+inline void init() {
+  TCCR1A = 0;                  // no output-compare pins, WGM11:10 = 0
+  TCCR1B = _BV(WGM12);         // CTC, clock stopped
+  HAL_TIMER1_MASK |= _BV(OCIE1A);
+}
+
+// Starts counting from zero; the first compare interrupt follows after
+// compare + 1 cycles.
+inline void start(uint16_t compare) {
+  TCNT1 = 0;
+  OCR1A = compare;
+  HAL_TIMER1_FLAGS = _BV(OCF1A);  // drop a match left from before the stop
+  TCCR1B = _BV(WGM12) | _BV(CS10);
+}
+
+inline void stop() { TCCR1B = _BV(WGM12); }
+
+inline void set_compare(uint16_t compare) { OCR1A = compare; }
+
+}  // namespace step_timer
+}  // namespace hal

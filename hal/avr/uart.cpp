@@ -1,0 +1,113 @@
+#include "uart.h"
+
+#include <avr/interrupt.h>
+#include <avr/pgmspace.h>
+
+#include "family.h"
+
+namespace hal {
+namespace uart {
+namespace {
+
+constexpr uint8_t kRxSize = 64;
+constexpr uint8_t kTxSize = 64;
+
+uint8_t rx_buf[kRxSize];
+volatile uint8_t rx_head, rx_tail;  // head written by the ISR, tail by the reader
+volatile bool rx_lost;
+
+uint8_t tx_buf[kTxSize];
+volatile uint8_t tx_head, tx_tail;  // head written by the writer, tail by the ISR
+
+}  // namespace
+
+void init(uint32_t f_cpu, uint32_t baud) {
+  const uint16_t ubrr = uint16_t((f_cpu / 4 / baud - 1) / 2);  // U2X, rounded
+  HAL_UBRRH = uint8_t(ubrr >> 8);
+  HAL_UBRRL = uint8_t(ubrr);
+  HAL_UCSRA = _BV(HAL_U2X);
+  HAL_UCSRC = HAL_UCSRC_8N1;
+  HAL_UCSRB = _BV(HAL_RXEN) | _BV(HAL_TXEN) | _BV(HAL_RXCIE);
+}
+
+bool available() { return rx_head != rx_tail; }
+
+uint8_t read() {
+  const uint8_t c = rx_buf[rx_tail % kRxSize];
+  rx_tail = uint8_t(rx_tail + 1);
+  return c;
+}
+
+bool overrun() {
+  if (!rx_lost) return false;
+  rx_lost = false;
+  return true;
+}
+
+void write(uint8_t c) {
+  while (uint8_t(tx_head - tx_tail) == kTxSize) {
+  }
+  tx_buf[tx_head % kTxSize] = c;
+  tx_head = uint8_t(tx_head + 1);
+  HAL_UCSRB |= _BV(HAL_UDRIE);
+}
+
+void write(const char* s) {
+  while (*s) write(uint8_t(*s++));
+}
+
+void write_P(const char* s) {
+  for (char c; (c = char(pgm_read_byte(s))) != 0; ++s) write(uint8_t(c));
+}
+
+void write_u32(uint32_t v) {
+  char digits[10];
+  uint8_t n = 0;
+  do {
+    digits[n++] = char('0' + v % 10);
+    v /= 10;
+  } while (v);
+  while (n) write(uint8_t(digits[--n]));
+}
+
+void write_i32(int32_t v) {
+  if (v < 0) {
+    write('-');
+    write_u32(uint32_t(-(v + 1)) + 1u);
+  } else {
+    write_u32(uint32_t(v));
+  }
+}
+
+void flush() {
+  while (tx_head != tx_tail) {
+  }
+}
+
+}  // namespace uart
+}  // namespace hal
+
+ISR(HAL_UART_RX_VECT) {
+  using namespace hal::uart;
+  const uint8_t status = HAL_UCSRA;
+  const uint8_t c = HAL_UDR;
+  if (status & (_BV(HAL_DOR) | _BV(HAL_FE))) rx_lost = true;
+  const uint8_t head = rx_head;
+  if (uint8_t(head - rx_tail) == kRxSize) {
+    rx_lost = true;
+    return;
+  }
+  rx_buf[head % kRxSize] = c;
+  rx_head = uint8_t(head + 1);
+}
+
+ISR(HAL_UART_UDRE_VECT) {
+  using namespace hal::uart;
+  const uint8_t tail = tx_tail;
+  if (tail == tx_head) {
+    HAL_UCSRB &= uint8_t(~_BV(HAL_UDRIE));
+    return;
+  }
+  HAL_UDR = tx_buf[tail % kTxSize];
+  tx_tail = uint8_t(tail + 1);
+}

@@ -1,0 +1,241 @@
+#include "machine.h"
+
+#include <avr_ioport.h>
+#include <sim_avr.h>
+#include <sim_elf.h>
+#include <sim_interrupts.h>
+#include <sim_irq.h>
+
+#include <cstdarg>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+
+#include "../core/shield_wiring.h"
+#include "board_info.h"
+
+namespace sim {
+
+namespace {
+
+constexpr uint8_t kPaint = 0xA5;
+
+// simavr's default sleep handler waits in wall-clock time; simulated time is
+// all we want.
+void no_sleep(avr_t*, avr_cycle_count_t) {}
+
+// simavr logs its ELF loading at debug level with no core to filter on; the
+// report owns standard output, so only warnings and errors get through, and
+// to standard error.
+void quiet_logger(avr_t*, const int level, const char* format, va_list args) {
+  if (level <= LOG_WARNING) std::vfprintf(stderr, format, args);
+}
+
+}  // namespace
+
+struct Machine::PinHook {
+  Machine* machine;
+  uint8_t code;
+  bool level = false;
+  bool known = false;
+  std::vector<std::function<void(bool, uint64_t)>> listeners;
+};
+
+Machine::Machine(const std::string& elf_path) : board_(read_board_descriptor(elf_path)) {
+  avr_global_logger_set(quiet_logger);
+  elf_firmware_t fw;
+  std::memset(&fw, 0, sizeof fw);
+  if (elf_read_firmware(elf_path.c_str(), &fw) != 0) throw std::runtime_error("cannot load " + elf_path);
+  std::snprintf(fw.mmcu, sizeof fw.mmcu, "%s", board_.mcu);
+  fw.frequency = board_.f_cpu;
+  avr_ = avr_make_mcu_by_name(board_.mcu);
+  if (!avr_) throw std::runtime_error(std::string("simavr has no core for ") + board_.mcu);
+  avr_init(avr_);
+  avr_->log = LOG_ERROR;
+  avr_->sleep = no_sleep;
+  avr_load_firmware(avr_, &fw);
+  std::free(fw.flash);
+  std::free(fw.eeprom);
+  std::free(fw.fuse);
+  std::free(fw.lockbits);
+  avr_->frequency = board_.f_cpu;
+
+  const uint16_t ram_start = uint16_t(avr_->ioend + 1);
+  paint_start_ = uint16_t(ram_start + fw.datasize + fw.bsssize);
+  for (uint32_t a = ram_start; a <= avr_->ramend; ++a) avr_->data[a] = kPaint;
+
+  serial_.reset(new SerialHost(avr_, board_.baud));
+  attach_axes();
+  attach_isr_profiler();
+}
+
+Machine::~Machine() {
+  if (avr_) avr_terminate(avr_);
+}
+
+uint64_t Machine::cycles() const { return avr_->cycle; }
+
+const AxisTrace* Machine::axis(char name) const {
+  for (const AxisTrace& a : axes_) {
+    if (a.name == name) return &a;
+  }
+  return nullptr;
+}
+
+void Machine::on_pin_irq(avr_irq_t*, uint32_t value, void* param) {
+  auto* hook = static_cast<PinHook*>(param);
+  const bool level = value != 0;
+  // simavr raises the pin IRQ on every port write: keep changes only.
+  if (hook->known && level == hook->level) return;
+  hook->known = true;
+  hook->level = level;
+  const uint64_t cycle = hook->machine->avr_->cycle;
+  for (auto& f : hook->listeners) f(level, cycle);
+}
+
+void Machine::hook_pin(uint8_t code, std::function<void(bool, uint64_t)> on_change) {
+  for (auto& h : pin_hooks_) {
+    if (h->code == code) {
+      h->listeners.push_back(std::move(on_change));
+      return;
+    }
+  }
+  pin_hooks_.emplace_back(new PinHook{this, code, false, false, {std::move(on_change)}});
+  avr_irq_t* irq = avr_io_getirq(avr_, AVR_IOCTL_IOPORT_GETIRQ(am::pin_port(code)), am::pin_bit(code));
+  if (!irq) throw std::runtime_error(std::string("no port ") + am::pin_port(code) + " on " + board_.mcu);
+  avr_irq_register_notify(irq, &Machine::on_pin_irq, pin_hooks_.back().get());
+}
+
+void Machine::attach_axes() {
+  axes_.resize(board_.axis_count);
+  step_dir_.reserve(board_.axis_count);
+  coils_.reserve(board_.axis_count);
+  for (uint8_t i = 0; i < board_.axis_count; ++i) {
+    const am::AxisDescriptor& d = board_.axes[i];
+    AxisTrace& t = axes_[i];
+    t.name = d.name;
+    t.kind = int(d.kind);
+    t.steps_per_mm = d.steps_per_m / 1000.0;
+    switch (d.kind) {
+      case am::AxisKind::step_dir: {
+        step_dir_.emplace_back(&t);
+        StepDirDecoder* dec = &step_dir_.back();
+        hook_pin(d.pins[1], [dec](bool level, uint64_t) { dec->on_dir(level); });
+        hook_pin(d.pins[0], [dec](bool level, uint64_t cycle) { dec->on_step(level, cycle); });
+        break;
+      }
+      case am::AxisKind::shield_latch: {
+        t.units_per_step = 2;
+        coils_.emplace_back(&t);
+        CoilDecoder* dec = &coils_.back();
+        const am::ShieldStepperWiring wiring = am::shield_wiring(d.option);
+        if (!latch_) {
+          latch_.reset(new Latch595Model);
+          const uint8_t data_pin = d.pins[2];
+          hook_pin(data_pin, [](bool, uint64_t) {});  // track its level
+          hook_pin(d.pins[1], [this, data_pin](bool level, uint64_t) {
+            latch_->on_clock(level, pin_hooks_level(data_pin));
+          });
+          hook_pin(d.pins[0], [this](bool level, uint64_t cycle) {
+            latch_->on_latch(level, cycle);
+          });
+          hook_pin(d.pins[3], [this](bool level, uint64_t) { latch_->on_enable(level); });
+        }
+        // Registered after the latch model's own listener, so it sees the
+        // outputs the latch edge just produced.
+        hook_pin(d.pins[0], [this, dec, wiring](bool level, uint64_t cycle) {
+          if (level) dec->on_pattern(wiring.pattern(latch_->outputs()), cycle);
+        });
+        hook_pin(d.pins[3], [this, dec, wiring](bool, uint64_t cycle) {
+          dec->on_pattern(wiring.pattern(latch_->outputs()), cycle);
+        });
+        break;
+      }
+      case am::AxisKind::unipolar4: {
+        t.units_per_step = 2;
+        coils_.emplace_back(&t);
+        CoilDecoder* dec = &coils_.back();
+        auto pattern = std::make_shared<uint8_t>(0);
+        for (uint8_t k = 0; k < 4; ++k) {
+          hook_pin(d.pins[k], [dec, pattern, k](bool level, uint64_t cycle) {
+            *pattern = uint8_t(level ? (*pattern | (1u << k)) : (*pattern & ~(1u << k)));
+            dec->on_pattern(*pattern, cycle);
+          });
+        }
+        break;
+      }
+      default:
+        break;
+    }
+  }
+}
+
+bool Machine::pin_hooks_level(uint8_t code) const {
+  for (const auto& h : pin_hooks_) {
+    if (h->code == code) return h->level;
+  }
+  return false;
+}
+
+void Machine::on_isr_irq(avr_irq_t*, uint32_t value, void* param) {
+  auto* hook = static_cast<std::pair<Machine*, int>*>(param);
+  Machine* m = hook->first;
+  const uint64_t now = m->avr_->cycle;
+  if (value) {
+    m->isr_entry_[hook->second] = now;
+    return;
+  }
+  auto it = m->isr_entry_.find(hook->second);
+  if (it == m->isr_entry_.end()) return;
+  IsrStats& s = m->isr_[hook->second];
+  const uint64_t spent = now - it->second;
+  ++s.count;
+  s.total_cycles += spent;
+  if (spent > s.max_cycles) s.max_cycles = spent;
+  m->isr_entry_.erase(it);
+}
+
+void Machine::attach_isr_profiler() {
+  for (int i = 0; i < avr_->interrupts.vector_count; ++i) {
+    avr_int_vector_t* v = avr_->interrupts.vector[i];
+    isr_hooks_.emplace_back(new std::pair<Machine*, int>(this, v->vector));
+    avr_irq_register_notify(v->irq + AVR_INT_IRQ_RUNNING, &Machine::on_isr_irq, isr_hooks_.back().get());
+  }
+}
+
+unsigned Machine::stack_bytes() const {
+  for (uint32_t a = paint_start_; a <= avr_->ramend; ++a) {
+    if (avr_->data[a] != kPaint) return unsigned(avr_->ramend - a + 1);
+  }
+  return 0;
+}
+
+const std::vector<PinEdge>& Machine::watch_pin(char port, uint8_t bit) {
+  const uint8_t code = am::pin_code(port, bit);
+  std::vector<PinEdge>& log = watched_[code];
+  hook_pin(code, [&log](bool level, uint64_t cycle) { log.push_back({cycle, level}); });
+  return log;
+}
+
+void Machine::set_input(char port, uint8_t bit, bool level) {
+  avr_raise_irq(avr_io_getirq(avr_, AVR_IOCTL_IOPORT_GETIRQ(port), bit), level ? 1 : 0);
+}
+
+RunEnd Machine::run(const std::function<bool()>& stop, uint64_t budget) {
+  const uint64_t end = avr_->cycle + budget;
+  uint64_t next_report = avr_->cycle + (uint64_t(1) << 27);
+  while (!stop()) {
+    if (avr_->cycle >= end) return RunEnd::budget_spent;
+    const int state = avr_run(avr_);
+    if (state == cpu_Done || state == cpu_Crashed) return RunEnd::cpu_stopped;
+    if (progress_ && avr_->cycle >= next_report) {
+      std::fprintf(stderr, "avrmotion-sim: %.2f s simulated, %zu lines answered\n",
+                   double(avr_->cycle) / board_.f_cpu, serial_->responses().size());
+      next_report += uint64_t(1) << 27;
+    }
+  }
+  return RunEnd::done;
+}
+
+}  // namespace sim

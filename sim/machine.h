@@ -1,0 +1,108 @@
+// A simulated board: one firmware ELF running on libsimavr, with its outputs
+// decoded, its UART attached to a SerialHost and the measurements later tests
+// and benchmarks rely on.
+//
+// Measurements
+//   - axes():          position and the cycle of every step, per axis;
+//   - latch():         every byte the shield's 74HC595 latched, with its cycle;
+//   - isr_stats():     per interrupt vector: entries, total and longest cycles,
+//                      counted from the vector's entry to its RETI (the
+//                      interrupt response before the vector and RETI's own
+//                      cycles are not included; see docs/simulator.md);
+//   - stack_bytes():   stack high-water mark, found by painting the free RAM
+//                      between the end of .bss and RAMEND before reset and
+//                      looking for the deepest overwritten byte;
+//   - watch_pin():     raw edges of any pin, with cycle stamps.
+// run() always ends: when the stop condition holds, when the cycle budget is
+// spent (a hung image fails a test instead of hanging CI) or when the core
+// stops or crashes.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "../core/board_descriptor.h"
+#include "axis_decoder.h"
+#include "serial_host.h"
+
+struct avr_t;
+struct avr_irq_t;
+
+namespace sim {
+
+struct IsrStats {
+  uint64_t count = 0;
+  uint64_t total_cycles = 0;
+  uint64_t max_cycles = 0;
+};
+
+struct PinEdge {
+  uint64_t cycle;
+  bool level;
+};
+
+enum class RunEnd { done, budget_spent, cpu_stopped };
+
+class Machine {
+ public:
+  explicit Machine(const std::string& elf_path);
+  ~Machine();
+  Machine(const Machine&) = delete;
+  Machine& operator=(const Machine&) = delete;
+
+  const am::BoardDescriptor& board() const { return board_; }
+  avr_t* avr() { return avr_; }
+  uint64_t cycles() const;
+  uint32_t f_cpu() const { return board_.f_cpu; }
+
+  SerialHost& serial() { return *serial_; }
+  const std::vector<AxisTrace>& axes() const { return axes_; }
+  const AxisTrace* axis(char name) const;
+  const Latch595Model* latch() const { return latch_.get(); }
+
+  // Runs until `stop` returns true (checked between instructions), until
+  // `budget` more cycles have run, or until the CPU stops.
+  RunEnd run(const std::function<bool()>& stop, uint64_t budget);
+  // Runs the serial script to its end (see SerialHost).
+  RunEnd run_script(uint64_t budget) { return run([this] { return serial_->finished(); }, budget); }
+
+  const std::map<int, IsrStats>& isr_stats() const { return isr_; }
+  unsigned stack_bytes() const;
+
+  // Starts recording every change of a pin (port 'A'..'D', bit 0..7).
+  const std::vector<PinEdge>& watch_pin(char port, uint8_t bit);
+  // Drives an input pin from outside (a switch, an encoder, a step source).
+  void set_input(char port, uint8_t bit, bool level);
+
+  void set_progress(bool on) { progress_ = on; }
+
+ private:
+  struct PinHook;
+  void hook_pin(uint8_t code, std::function<void(bool, uint64_t)> on_change);
+  bool pin_hooks_level(uint8_t code) const;
+  void attach_axes();
+  void attach_isr_profiler();
+  void paint_stack();
+  static void on_pin_irq(avr_irq_t* irq, uint32_t value, void* param);
+  static void on_isr_irq(avr_irq_t* irq, uint32_t value, void* param);
+
+  am::BoardDescriptor board_;
+  avr_t* avr_ = nullptr;
+  std::unique_ptr<SerialHost> serial_;
+  std::vector<AxisTrace> axes_;
+  std::vector<std::unique_ptr<PinHook>> pin_hooks_;
+  std::vector<StepDirDecoder> step_dir_;
+  std::vector<CoilDecoder> coils_;
+  std::unique_ptr<Latch595Model> latch_;
+  std::map<int, IsrStats> isr_;
+  std::map<int, uint64_t> isr_entry_;
+  std::vector<std::unique_ptr<std::pair<Machine*, int>>> isr_hooks_;
+  std::map<int, std::vector<PinEdge>> watched_;
+  uint16_t paint_start_ = 0;
+  bool progress_ = false;
+};
+
+}  // namespace sim

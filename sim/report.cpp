@@ -1,0 +1,91 @@
+#include "report.h"
+
+#include <cstdio>
+#include <string>
+
+namespace sim {
+
+namespace {
+
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", c);
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+const char* end_name(RunEnd end) {
+  switch (end) {
+    case RunEnd::done: return "done";
+    case RunEnd::budget_spent: return "timeout";
+    default: return "cpu_stopped";
+  }
+}
+
+}  // namespace
+
+void write_report(std::ostream& out, Machine& m, RunEnd end) {
+  const am::BoardDescriptor& b = m.board();
+  SerialHost& serial = m.serial();
+  out << "{\n";
+  out << "  \"board\": " << quoted(b.board) << ",\n";
+  out << "  \"mcu\": " << quoted(b.mcu) << ",\n";
+  out << "  \"f_cpu\": " << b.f_cpu << ",\n";
+  out << "  \"end\": " << quoted(end_name(end)) << ",\n";
+  out << "  \"cycles\": " << m.cycles() << ",\n";
+  out << "  \"seconds\": " << number(double(m.cycles()) / b.f_cpu) << ",\n";
+  out << "  \"banner\": " << quoted(serial.banner()) << ",\n";
+  out << "  \"lines_sent\": " << serial.lines_sent() << ",\n";
+  out << "  \"lines_ok\": " << serial.lines_ok() << ",\n";
+  out << "  \"errors\": [";
+  const auto errors = serial.errors();
+  for (size_t i = 0; i < errors.size(); ++i) out << (i ? ", " : "") << quoted(errors[i]);
+  out << "],\n";
+  out << "  \"axes\": {";
+  bool first = true;
+  for (const AxisTrace& a : m.axes()) {
+    out << (first ? "\n" : ",\n") << "    \"" << a.name << "\": {\"steps\": " << number(a.steps())
+        << ", \"mm\": " << number(a.steps_per_mm > 0 ? a.steps() / a.steps_per_mm : 0)
+        << ", \"decode_errors\": " << a.decode_errors << "}";
+    first = false;
+  }
+  out << "\n  },\n";
+  out << "  \"step_stats\": {";
+  first = true;
+  for (const AxisTrace& a : m.axes()) {
+    const uint64_t min = a.min_interval();
+    out << (first ? "\n" : ",\n") << "    \"" << a.name << "\": {\"step_events\": " << a.step_cycles.size()
+        << ", \"max_rate_hz\": " << number(min ? double(b.f_cpu) / min : 0)
+        << ", \"min_interval_cycles\": " << min << "}";
+    first = false;
+  }
+  out << "\n  },\n";
+  out << "  \"isr\": {";
+  first = true;
+  for (const auto& kv : m.isr_stats()) {
+    out << (first ? "\n" : ",\n") << "    \"" << kv.first << "\": {\"count\": " << kv.second.count
+        << ", \"total_cycles\": " << kv.second.total_cycles << ", \"max_cycles\": " << kv.second.max_cycles << "}";
+    first = false;
+  }
+  out << "\n  },\n";
+  out << "  \"stack_bytes\": " << m.stack_bytes() << "\n";
+  out << "}\n";
+}
+
+}  // namespace sim

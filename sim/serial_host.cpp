@@ -1,0 +1,99 @@
+#include "serial_host.h"
+
+#include <avr_uart.h>
+#include <sim_avr.h>
+#include <sim_cycle_timers.h>
+
+namespace sim {
+
+SerialHost::SerialHost(avr_t* avr, uint32_t baud)
+    : avr_(avr), byte_cycles_(uint64_t(avr->frequency) * 10 / baud) {
+  // No stdio echo and no usleep on every status poll (simavr 1.6 defaults).
+  uint32_t flags = 0;
+  avr_ioctl(avr, AVR_IOCTL_UART_GET_FLAGS('0'), &flags);
+  flags &= ~(AVR_UART_FLAG_STDIO | AVR_UART_FLAG_POLL_SLEEP);
+  avr_ioctl(avr, AVR_IOCTL_UART_SET_FLAGS('0'), &flags);
+  avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUTPUT),
+                          &SerialHost::on_output, this);
+  input_irq_ = avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_INPUT);
+}
+
+void SerialHost::add_line(const std::string& line) { script_.push_back(line); }
+
+const std::string& SerialHost::banner() const {
+  static const std::string none;
+  return received_.empty() ? none : received_.front();
+}
+
+size_t SerialHost::lines_ok() const {
+  size_t n = 0;
+  for (const Response& r : responses_) n += r.answer == "ok";
+  return n;
+}
+
+std::vector<std::string> SerialHost::errors() const {
+  std::vector<std::string> out;
+  for (const Response& r : responses_) {
+    if (r.answer != "ok") out.push_back(r.answer);
+  }
+  return out;
+}
+
+void SerialHost::on_output(avr_irq_t*, uint32_t value, void* self) {
+  auto* host = static_cast<SerialHost*>(self);
+  const char c = char(value);
+  if (c == '\n') {
+    std::string line;
+    line.swap(host->partial_);
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    host->on_line(line);
+  } else {
+    host->partial_ += c;
+  }
+}
+
+void SerialHost::on_line(const std::string& line) {
+  const bool first = received_.empty();
+  received_.push_back(line);
+  if (first) {
+    send_next();  // the banner: the firmware is ready
+    return;
+  }
+  const bool answer = line == "ok" || line.rfind("error", 0) == 0;
+  if (!answer || !awaiting_answer_) return;
+  awaiting_answer_ = false;
+  if (wait_sent_) {
+    finished_ = true;
+    return;
+  }
+  responses_.back().answer = line;
+  responses_.back().answer_cycle = avr_->cycle;
+  send_next();
+}
+
+void SerialHost::send_next() {
+  if (script_.empty()) {
+    if (wait_sent_) return;
+    wait_sent_ = true;
+    outgoing_ = "WAIT\n";
+  } else {
+    const std::string line = script_.front();
+    script_.pop_front();
+    ++lines_sent_;
+    responses_.push_back({line, "", avr_->cycle, 0});
+    outgoing_ = line + "\n";
+  }
+  outgoing_pos_ = 0;
+  awaiting_answer_ = true;
+  avr_cycle_timer_register(avr_, byte_cycles_, &SerialHost::on_byte_slot, this);
+}
+
+uint64_t SerialHost::on_byte_slot(avr_t* avr, uint64_t when, void* self) {
+  auto* host = static_cast<SerialHost*>(self);
+  if (host->outgoing_pos_ >= host->outgoing_.size()) return 0;
+  avr_raise_irq(host->input_irq_, uint8_t(host->outgoing_[host->outgoing_pos_++]));
+  (void)avr;
+  return host->outgoing_pos_ < host->outgoing_.size() ? when + host->byte_cycles_ : 0;
+}
+
+}  // namespace sim

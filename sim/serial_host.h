@@ -1,0 +1,63 @@
+// The host at the other end of the firmware's UART: it sends a script of
+// command lines with the protocol's flow control (one line in flight; the next
+// line leaves after "ok" or "error: ..." came back), paced at the real byte
+// time of the baud rate, and records everything the firmware prints.
+//
+// The first line the firmware prints is its banner; nothing is sent before
+// it. After the last script line the host sends WAIT (not counted as a script
+// line), so finished() becomes true only once all motion has ended.
+#pragma once
+#include <cstdint>
+#include <deque>
+#include <string>
+#include <vector>
+
+struct avr_t;
+struct avr_irq_t;
+
+namespace sim {
+
+struct Response {
+  std::string line;     // the script line
+  std::string answer;   // "ok" or "error: ..."
+  uint64_t sent_cycle;  // first byte handed to the UART
+  uint64_t answer_cycle;
+};
+
+class SerialHost {
+ public:
+  SerialHost(avr_t* avr, uint32_t baud);
+
+  void add_line(const std::string& line);
+  bool finished() const { return finished_; }
+  bool banner_seen() const { return !received_.empty(); }
+
+  const std::string& banner() const;
+  const std::vector<std::string>& received() const { return received_; }
+  const std::vector<Response>& responses() const { return responses_; }
+  size_t lines_sent() const { return lines_sent_; }
+  size_t lines_ok() const;
+  std::vector<std::string> errors() const;
+
+ private:
+  static void on_output(avr_irq_t* irq, uint32_t value, void* self);
+  static uint64_t on_byte_slot(avr_t* avr, uint64_t when, void* self);
+  void on_line(const std::string& line);
+  void send_next();
+
+  avr_t* avr_;
+  uint64_t byte_cycles_;
+  avr_irq_t* input_irq_;
+  std::deque<std::string> script_;
+  std::string outgoing_;
+  size_t outgoing_pos_ = 0;
+  bool awaiting_answer_ = false;
+  bool wait_sent_ = false;
+  bool finished_ = false;
+  size_t lines_sent_ = 0;
+  std::string partial_;
+  std::vector<std::string> received_;
+  std::vector<Response> responses_;
+};
+
+}  // namespace sim

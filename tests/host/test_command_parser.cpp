@@ -1,0 +1,74 @@
+#include <gtest/gtest.h>
+
+#include "core/command_parser.h"
+
+using am::Command;
+using am::CommandKind;
+using am::ParseError;
+
+namespace {
+ParseError parse(const char* line, Command& c) { return am::parse_command(line, c); }
+ParseError parse(const char* line) {
+  Command c;
+  return am::parse_command(line, c);
+}
+}  // namespace
+
+TEST(CommandParser, MoveWithAllWords) {
+  Command c;
+  ASSERT_EQ(parse("MOVE X-400 F800 A1600 D3200", c), ParseError::none);
+  EXPECT_EQ(c.kind, CommandKind::move);
+  EXPECT_EQ(c.axis, 'X');
+  EXPECT_EQ(c.steps, -400);
+  EXPECT_EQ(c.rate, 800u);
+  EXPECT_EQ(c.accel, 1600u);
+  EXPECT_EQ(c.decel, 3200u);
+  EXPECT_EQ(c.given, am::kGivenRate | am::kGivenAccel | am::kGivenDecel);
+}
+
+TEST(CommandParser, CaseAndBlanksDoNotMatter) {
+  Command c;
+  ASSERT_EQ(parse("  move\ty25   f10 ", c), ParseError::none);
+  EXPECT_EQ(c.axis, 'Y');
+  EXPECT_EQ(c.steps, 25);
+  EXPECT_EQ(c.given, am::kGivenRate);
+}
+
+TEST(CommandParser, OtherCommands) {
+  Command c;
+  ASSERT_EQ(parse("POS", c), ParseError::none);
+  EXPECT_EQ(c.kind, CommandKind::position);
+  ASSERT_EQ(parse("release", c), ParseError::none);
+  EXPECT_EQ(c.kind, CommandKind::release);
+  ASSERT_EQ(parse("WAIT", c), ParseError::none);
+  EXPECT_EQ(c.kind, CommandKind::wait);
+  EXPECT_EQ(parse("WAIT X1"), ParseError::unexpected_word);
+}
+
+TEST(CommandParser, MalformedLinesAreNamed) {
+  EXPECT_EQ(parse(""), ParseError::empty);
+  EXPECT_EQ(parse("   "), ParseError::empty);
+  EXPECT_EQ(parse("MOVEX10"), ParseError::unknown_command);
+  EXPECT_EQ(parse("JUMP X10"), ParseError::unknown_command);
+  EXPECT_EQ(parse("MOVE"), ParseError::missing_axis);
+  EXPECT_EQ(parse("MOVE F100"), ParseError::missing_axis);
+  EXPECT_EQ(parse("MOVE X"), ParseError::bad_number);
+  EXPECT_EQ(parse("MOVE X1.5"), ParseError::bad_number);
+  EXPECT_EQ(parse("MOVE X--1"), ParseError::bad_number);
+  EXPECT_EQ(parse("MOVE 10"), ParseError::bad_word);
+  EXPECT_EQ(parse("MOVE X10 X20"), ParseError::duplicate_word);
+  EXPECT_EQ(parse("MOVE X10 Y20"), ParseError::two_axes);
+  EXPECT_EQ(parse("MOVE X10 F1 F2"), ParseError::duplicate_word);
+  EXPECT_EQ(parse("MOVE X10 Q5"), ParseError::unexpected_word);
+  EXPECT_EQ(parse("MOVE X10 F-5"), ParseError::out_of_range);
+}
+
+TEST(CommandParser, NumbersAreRangeChecked) {
+  Command c;
+  ASSERT_EQ(parse("MOVE X2147483647", c), ParseError::none);
+  EXPECT_EQ(c.steps, 2147483647);
+  ASSERT_EQ(parse("MOVE X-2147483647", c), ParseError::none);
+  EXPECT_EQ(c.steps, -2147483647);
+  EXPECT_EQ(parse("MOVE X2147483648"), ParseError::out_of_range);
+  EXPECT_EQ(parse("MOVE X99999999999999999999"), ParseError::out_of_range);
+}

@@ -1,0 +1,106 @@
+// The seed ramp against its defining facts: the recurrence of seed-000 section
+// 3, the phase boundaries of Appendix 1 and symmetric deceleration.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "core/speed_ramp.h"
+
+namespace {
+
+std::vector<uint32_t> intervals(uint32_t steps, const am::RampConfig& cfg) {
+  am::SpeedRamp ramp;
+  EXPECT_EQ(ramp.plan(steps, cfg), am::RampError::none);
+  std::vector<uint32_t> out;
+  while (!ramp.finished()) out.push_back(ramp.next());
+  return out;
+}
+
+const am::RampConfig kCfg{16000000, 4000, 8000, 8000};
+
+}  // namespace
+
+TEST(SpeedRamp, FirstDelayIsTheCorrectedAustinFormula) {
+  for (uint32_t accel : {100u, 800u, 8000u, 250000u}) {
+    const double expected = 0.676 * 16e6 * std::sqrt(2.0 / accel);
+    EXPECT_NEAR(am::SpeedRamp::first_delay_q4(16000000, accel) / 16.0, expected, 0.5) << accel;
+  }
+}
+
+TEST(SpeedRamp, AccelerationFollowsTheRecurrence) {
+  const std::vector<uint32_t> c = intervals(2000, kCfg);
+  double exact = 0.676 * 16e6 * std::sqrt(2.0 / 8000);
+  for (int n = 1; n < 40; ++n) {
+    exact -= 2 * exact / (4 * n + 1);
+    EXPECT_NEAR(c[n], exact, 1.0) << "step " << n;
+  }
+}
+
+TEST(SpeedRamp, CruiseHoldsTheFirstDelayBelowTheLimit) {
+  const std::vector<uint32_t> c = intervals(5000, kCfg);
+  const uint32_t c_min = 16000000 / 4000;
+  size_t first_below = 0;
+  while (first_below < c.size() && c[first_below] >= c_min) ++first_below;
+  ASSERT_LT(first_below + 100, c.size());
+  // Accelerating delays are all >= the limit, then one value is held.
+  for (size_t i = first_below; i < first_below + 100; ++i) EXPECT_EQ(c[i], c[first_below]);
+  // v^2 / (2a) = 1000 steps nominal; the 0.676 start shifts it a little.
+  EXPECT_NEAR(double(first_below), 1000.0, 5.0);
+}
+
+TEST(SpeedRamp, DecelerationMirrorsAccelerationWhenRatesAreEqual) {
+  const std::vector<uint32_t> c = intervals(3000, kCfg);
+  ASSERT_EQ(c.size(), 3000u);
+  for (size_t k = 0; k < 900; ++k) {
+    EXPECT_NEAR(double(c[c.size() - 1 - k]), double(c[k]), 1.0 + c[k] * 1e-3) << k;
+  }
+}
+
+TEST(SpeedRamp, ShortMoveTurnsIntoATriangleAtHalfWay) {
+  const std::vector<uint32_t> c = intervals(100, kCfg);
+  ASSERT_EQ(c.size(), 100u);
+  size_t fastest = 0;
+  for (size_t i = 1; i < c.size(); ++i) {
+    if (c[i] < c[fastest]) fastest = i;
+  }
+  EXPECT_NEAR(double(fastest), 49.5, 1.0);  // m * d / (a + d) = 50
+  EXPECT_GT(c[fastest], 16000000u / 4000);  // never reached cruise
+}
+
+TEST(SpeedRamp, UnequalDecelerationUsesTheStepRatio) {
+  // n1 * a1 = n2 * a2: decelerating twice as hard takes half the steps.
+  const am::RampConfig cfg{16000000, 4000, 8000, 16000};
+  const std::vector<uint32_t> c = intervals(3000, cfg);
+  const uint32_t cruise = c[1500];
+  size_t accel_steps = 0, decel_steps = 0;
+  while (c[accel_steps] != cruise) ++accel_steps;
+  while (c[c.size() - 1 - decel_steps] != cruise) ++decel_steps;
+  EXPECT_NEAR(double(decel_steps), accel_steps / 2.0, 1.0);
+}
+
+TEST(SpeedRamp, RunsGroupTheCruise) {
+  am::SpeedRamp ramp;
+  ramp.plan(100000, kCfg);
+  uint32_t total = 0, runs = 0;
+  for (am::StepRun r = ramp.next_run(); r.count; r = ramp.next_run()) {
+    total += r.count;
+    ++runs;
+  }
+  EXPECT_EQ(total, 100000u);
+  EXPECT_LT(runs, 2200u);  // ~1000 + ~1000 single steps, cruise in 65535 chunks
+}
+
+TEST(SpeedRamp, SingleStepMoveTakesTheFirstDelay) {
+  const std::vector<uint32_t> c = intervals(1, kCfg);
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_NEAR(c[0], 0.676 * 16e6 * std::sqrt(2.0 / 8000), 1.0);
+}
+
+TEST(SpeedRamp, ZeroSpeedAndZeroAccelerationAreRejected) {
+  am::SpeedRamp ramp;
+  EXPECT_EQ(ramp.plan(10, am::RampConfig{16000000, 0, 100, 100}), am::RampError::zero_speed);
+  EXPECT_EQ(ramp.plan(10, am::RampConfig{16000000, 100, 0, 100}), am::RampError::zero_accel);
+  EXPECT_EQ(ramp.plan(10, am::RampConfig{16000000, 100, 100, 0}), am::RampError::zero_accel);
+  EXPECT_EQ(ramp.plan(10, am::RampConfig{1000, 2000, 100, 100}), am::RampError::rate_above_tick);
+}

@@ -1,0 +1,34 @@
+// Helpers shared by the simavr tests: load a board image, run a script.
+#pragma once
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "machine.h"
+
+namespace simtest {
+
+inline std::string image(const std::string& name) {
+  return std::string(AVRMOTION_FIRMWARE_DIR) + "/avrmotion-" + name + ".elf";
+}
+
+// Runs `lines` on a fresh machine of image `name`; fails the test if the run
+// does not finish within `seconds` of simulated time.
+inline std::unique_ptr<sim::Machine> run(const std::string& name, const std::vector<std::string>& lines,
+                                         double seconds = 10) {
+  std::unique_ptr<sim::Machine> m(new sim::Machine(image(name)));
+  for (const std::string& l : lines) m->serial().add_line(l);
+  const sim::RunEnd end = m->run_script(uint64_t(seconds * m->f_cpu()));
+  EXPECT_EQ(end, sim::RunEnd::done) << name << ": script did not finish";
+  return m;
+}
+
+inline std::vector<uint64_t> intervals(const std::vector<uint64_t>& stamps) {
+  std::vector<uint64_t> out;
+  for (size_t i = 1; i < stamps.size(); ++i) out.push_back(stamps[i] - stamps[i - 1]);
+  return out;
+}
+
+}  // namespace simtest

@@ -1,0 +1,71 @@
+// Every board image boots in its safe state, greets the host and answers.
+#include <string>
+
+#include "sim_fixture.h"
+
+namespace {
+
+struct Image {
+  const char* name;
+  const char* board;
+  const char* mcu;
+  unsigned long f_cpu;
+};
+
+class Boot : public ::testing::TestWithParam<Image> {};
+
+TEST_P(Boot, BannerNamesBoardAndClockThenAnswers) {
+  const Image& img = GetParam();
+  auto m = simtest::run(img.name, {"POS", "NOPE"}, 1);
+  const std::string expected = std::string("avrmotion ") + AVRMOTION_VERSION_STRING + " board=" + img.board +
+                               " mcu=" + img.mcu + " f_cpu=" + std::to_string(img.f_cpu);
+  EXPECT_EQ(m->serial().banner(), expected);
+  EXPECT_EQ(m->board().f_cpu, img.f_cpu);
+  ASSERT_EQ(m->serial().responses().size(), 2u);
+  EXPECT_EQ(m->serial().responses()[0].answer, "ok");
+  EXPECT_EQ(m->serial().responses()[1].answer, "error: unknown command");
+  // No axis moved and nothing was decoded as a step.
+  for (const sim::AxisTrace& a : m->axes()) EXPECT_TRUE(a.step_cycles.empty()) << a.name;
+}
+
+TEST_P(Boot, EveryAxisMovesExactlyAsCommanded) {
+  const Image& img = GetParam();
+  std::vector<std::string> script;
+  sim::Machine probe(simtest::image(img.name));
+  for (const sim::AxisTrace& a : probe.axes()) {
+    script.push_back(std::string("MOVE ") + a.name + "37 F2000 A20000");
+    script.push_back(std::string("MOVE ") + a.name + "-12 F2000 A20000");
+  }
+  auto m = simtest::run(img.name, script, 5);
+  EXPECT_EQ(m->serial().lines_ok(), script.size());
+  for (const sim::AxisTrace& a : m->axes()) {
+    EXPECT_DOUBLE_EQ(a.steps(), 25.0) << a.name;
+    EXPECT_EQ(a.step_cycles.size(), 49u) << a.name;
+    EXPECT_EQ(a.decode_errors, 0u) << a.name;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Images, Boot,
+                         ::testing::Values(Image{"uno", "uno", "atmega328p", 16000000},
+                                           Image{"m32", "m32", "atmega32", 16000000},
+                                           Image{"m16", "m16", "atmega16", 16000000},
+                                           Image{"m16-8mhz", "m16", "atmega16", 8000000}),
+                         [](const ::testing::TestParamInfo<Image>& info) {
+                           std::string n = info.param.name;
+                           for (char& c : n) c = c == '-' ? '_' : c;
+                           return n;
+                         });
+
+TEST(Boot, PowerOnLeavesCoilsOffAndStepLinesLow) {
+  sim::Machine uno(simtest::image("uno"));
+  uno.run([&] { return uno.serial().banner_seen(); }, 16000000);
+  ASSERT_NE(uno.latch(), nullptr);
+  EXPECT_EQ(uno.latch()->outputs(), 0);  // shield: all bridge inputs low
+
+  sim::Machine m32(simtest::image("m32"));
+  const auto& step = m32.watch_pin('C', 0);
+  m32.run([&] { return m32.serial().banner_seen(); }, 16000000);
+  for (const sim::PinEdge& e : step) EXPECT_FALSE(e.level);
+}
+
+}  // namespace
