@@ -92,7 +92,7 @@ else()
       -o Dir::Cache=${_apt}/cache
       -o APT::Sandbox::User=root)
     message(STATUS "libsimavr: fetching Debian bookworm simavr source (private apt config in ${_apt})")
-    foreach(step "update" "source simavr=1.6+dfsg-3")
+    foreach(step "update" "source simavr")
       separate_arguments(_args UNIX_COMMAND "${step}")
       execute_process(COMMAND ${AVRMOTION_APT_GET} -q ${_apt_opts} ${_args}
         WORKING_DIRECTORY ${_sa_root}/fetch
