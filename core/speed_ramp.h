@@ -35,7 +35,8 @@ struct RampConfig {
   uint32_t decel;     // steps/s^2
 };
 
-enum class RampError : uint8_t { none, zero_speed, zero_accel, rate_above_tick };
+// out_of_range: a limit of ExactRamp (speed_ramp_exact.h) or of plan_delays().
+enum class RampError : uint8_t { none, zero_speed, zero_accel, rate_above_tick, out_of_range };
 
 struct StepRun {
   uint32_t interval;  // ticks before each step of the run
@@ -72,6 +73,32 @@ class SpeedRamp {
     phase_ = Phase::accel;
     return RampError::none;
   }
+
+  // The same method with its delays given directly: c0 and the cruise delay in
+  // Q4 ticks, accel/decel only as their ratio (for the decelerating part).
+  // This is how tables stated in physical units (seed-000 Appendix 1: c0 =
+  // 16940.51 us for 100 rad/s^2 at 0.0314 rad/step) are reproduced exactly,
+  // without rounding the acceleration to whole steps/s^2 first.
+  RampError plan_delays(uint32_t steps, uint32_t c0_q4, uint32_t cruise_q4, uint32_t accel,
+                        uint32_t decel) {
+    if (cruise_q4 == 0) return RampError::zero_speed;
+    if (accel == 0 || decel == 0) return RampError::zero_accel;
+    // 2 c + rest must stay below 2^32 in the recurrence.
+    if (c0_q4 >= (uint32_t(1) << 30)) return RampError::out_of_range;
+    cfg_ = RampConfig{0, 0, accel, decel};
+    remaining_ = steps;
+    c_ = c0_q4;
+    c_min_ = cruise_q4;
+    rest_ = 0;
+    n_ = 0;
+    stop_steps_ = 0;
+    phase_ = Phase::accel;
+    return RampError::none;
+  }
+
+  // Unrounded (Q4) delay of the step next() will return while accelerating;
+  // on entering cruise or deceleration the step itself may still change it.
+  uint32_t accel_delay_q4() const { return c_; }
 
   bool finished() const { return remaining_ == 0; }
   uint32_t remaining() const { return remaining_; }
