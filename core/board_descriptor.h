@@ -34,7 +34,7 @@ struct AxisDescriptor {
   uint32_t steps_per_m;   // full steps per metre of travel
 };
 
-constexpr uint8_t kMaxAxes = 4;
+constexpr uint8_t kMaxAxes = 6;
 
 struct BoardDescriptor {
   char magic[4];          // "AMB1"
@@ -48,6 +48,6 @@ struct BoardDescriptor {
 };
 
 static_assert(sizeof(AxisDescriptor) == 12, "descriptor layout must match on host and AVR");
-static_assert(sizeof(BoardDescriptor) == 88, "descriptor layout must match on host and AVR");
+static_assert(sizeof(BoardDescriptor) == 112, "descriptor layout must match on host and AVR");
 
 }  // namespace am

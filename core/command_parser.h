@@ -34,7 +34,7 @@ enum class ParseError : uint8_t {
 
 struct Command {
   CommandKind kind;
-  char axis;        // 'X', 'Y', 'Z' or 'E'
+  char axis;        // 'X', 'Y', 'Z', 'E' or 'U'
   int32_t steps;
   uint32_t rate;    // steps/s
   uint32_t accel;   // steps/s^2
@@ -79,7 +79,7 @@ inline ParseError number(const char*& p, int32_t& value) {
   return ParseError::none;
 }
 
-inline bool is_axis(char c) { return c == 'X' || c == 'Y' || c == 'Z' || c == 'E'; }
+inline bool is_axis(char c) { return c == 'X' || c == 'Y' || c == 'Z' || c == 'E' || c == 'U'; }
 
 }  // namespace detail
 

@@ -11,7 +11,7 @@ struct Describe;
 
 template <typename... Axes>
 struct Describe<AxisSet<Axes...>> {
-  static_assert(sizeof...(Axes) <= am::kMaxAxes, "the descriptor holds four axes");
+  static_assert(sizeof...(Axes) <= am::kMaxAxes, "the descriptor holds six axes");
   static constexpr am::BoardDescriptor make() {
     return am::BoardDescriptor{{'A', 'M', 'B', '1'}, AVRMOTION_BOARD_NAME, AVRMOTION_MCU_NAME,
                                F_CPU, board::kBaud, uint8_t(sizeof...(Axes)), {0, 0, 0},

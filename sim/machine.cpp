@@ -26,10 +26,11 @@ constexpr uint8_t kPaint = 0xA5;
 void no_sleep(avr_t*, avr_cycle_count_t) {}
 
 // simavr logs its ELF loading at debug level with no core to filter on; the
-// report owns standard output, so only warnings and errors get through, and
-// to standard error.
+// report owns standard output, so only errors get through, to standard error.
+// (Its warnings are notes such as an OCR write before a timer's clock and
+// mode are set, which the datasheet allows.)
 void quiet_logger(avr_t*, const int level, const char* format, va_list args) {
-  if (level <= LOG_WARNING) std::vfprintf(stderr, format, args);
+  if (level <= LOG_ERROR) std::vfprintf(stderr, format, args);
 }
 
 }  // namespace
@@ -156,12 +157,28 @@ void Machine::attach_axes() {
         t.units_per_step = 2;
         coils_.emplace_back(&t);
         CoilDecoder* dec = &coils_.back();
-        auto pattern = std::make_shared<uint8_t>(0);
-        for (uint8_t k = 0; k < 4; ++k) {
-          hook_pin(d.pins[k], [dec, pattern, k](bool level, uint64_t cycle) {
-            *pattern = uint8_t(level ? (*pattern | (1u << k)) : (*pattern & ~(1u << k)));
-            dec->on_pattern(*pattern, cycle);
+        const uint8_t* pins = d.pins;
+        const bool one_port = am::pin_port(pins[0]) == am::pin_port(pins[1]) &&
+                              am::pin_port(pins[0]) == am::pin_port(pins[2]) &&
+                              am::pin_port(pins[0]) == am::pin_port(pins[3]);
+        if (one_port) {
+          // One port write moves several pins at once, but simavr reports
+          // them pin by pin; the port-wide IRQ shows the write as a whole.
+          uint8_t bits[4];
+          for (int k = 0; k < 4; ++k) bits[k] = am::pin_bit(pins[k]);
+          hook_port(am::pin_port(pins[0]), [dec, bits](uint8_t value, uint64_t cycle) {
+            uint8_t pattern = 0;
+            for (int k = 0; k < 4; ++k) pattern |= uint8_t(((value >> bits[k]) & 1) << k);
+            dec->on_pattern(pattern, cycle);
           });
+        } else {
+          auto pattern = std::make_shared<uint8_t>(0);
+          for (uint8_t k = 0; k < 4; ++k) {
+            hook_pin(pins[k], [dec, pattern, k](bool level, uint64_t cycle) {
+              *pattern = uint8_t(level ? (*pattern | (1u << k)) : (*pattern & ~(1u << k)));
+              dec->on_pattern(*pattern, cycle);
+            });
+          }
         }
         break;
       }
@@ -169,6 +186,23 @@ void Machine::attach_axes() {
         break;
     }
   }
+}
+
+struct Machine::PortHook {
+  avr_t* avr;
+  std::function<void(uint8_t, uint64_t)> listener;
+};
+
+void Machine::on_port_irq(avr_irq_t*, uint32_t value, void* param) {
+  auto* hook = static_cast<PortHook*>(param);
+  hook->listener(uint8_t(value), hook->avr->cycle);
+}
+
+void Machine::hook_port(char port, std::function<void(uint8_t, uint64_t)> on_write) {
+  port_hooks_.emplace_back(new PortHook{avr_, std::move(on_write)});
+  avr_irq_t* irq = avr_io_getirq(avr_, AVR_IOCTL_IOPORT_GETIRQ(port), IOPORT_IRQ_PIN_ALL);
+  if (!irq) throw std::runtime_error(std::string("no port ") + port + " on " + board_.mcu);
+  avr_irq_register_notify(irq, &Machine::on_port_irq, port_hooks_.back().get());
 }
 
 bool Machine::pin_hooks_level(uint8_t code) const {

@@ -81,12 +81,16 @@ class Machine {
 
  private:
   struct PinHook;
+  struct PortHook;
   void hook_pin(uint8_t code, std::function<void(bool, uint64_t)> on_change);
   bool pin_hooks_level(uint8_t code) const;
+  // Whole-port writes (value = the port's pins after the write).
+  void hook_port(char port, std::function<void(uint8_t, uint64_t)> on_write);
   void attach_axes();
   void attach_isr_profiler();
   void paint_stack();
   static void on_pin_irq(avr_irq_t* irq, uint32_t value, void* param);
+  static void on_port_irq(avr_irq_t* irq, uint32_t value, void* param);
   static void on_isr_irq(avr_irq_t* irq, uint32_t value, void* param);
 
   am::BoardDescriptor board_;
@@ -94,6 +98,7 @@ class Machine {
   std::unique_ptr<SerialHost> serial_;
   std::vector<AxisTrace> axes_;
   std::vector<std::unique_ptr<PinHook>> pin_hooks_;
+  std::vector<std::unique_ptr<PortHook>> port_hooks_;
   std::vector<StepDirDecoder> step_dir_;
   std::vector<CoilDecoder> coils_;
   std::unique_ptr<Latch595Model> latch_;

@@ -8,16 +8,19 @@
 // rows in), motor encoder INT0 (PD2), spindle encoder INT1 (PD3), spindle index
 // PD6, limit switch PD7, L298 enable PWM on OC1A (PD5). The thesis put the L298
 // direction on PD0/PD1, which are the UART here; the servo option will move
-// them. PC2..PC5 need JTAG off, which main() does on every ATmega16/32.
+// them. Axis U: a ULN2003 unipolar motor on PC2..PC5, which need JTAG off
+// (main() does that on every ATmega16/32).
 #pragma once
 #include "../../hal/avr/gpio.h"
 #include "../drivers/axis_set.h"
 #include "../drivers/step_dir_axis.h"
+#include "../drivers/unipolar_axis.h"
 
 namespace board {
 
 using hal::Pin;
-using Axes = AxisSet<StepDirAxis<'Z', Pin<'C', 0>, Pin<'C', 1>, Pin<'C', 7>, true, 62992>>;
+using Axes = AxisSet<StepDirAxis<'Z', Pin<'C', 0>, Pin<'C', 1>, Pin<'C', 7>, true, 62992>,
+                     UnipolarAxis<'U', Pin<'C', 2>, Pin<'C', 3>, Pin<'C', 4>, Pin<'C', 5>, 4096>>;
 
 constexpr uint32_t kBaud = 115200;
 constexpr uint32_t kStepTimerHz = F_CPU;

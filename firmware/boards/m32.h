@@ -5,11 +5,14 @@
 // PC1/PC3/PC5/PC7, enables PB0..PB3 (active low). Endstops (switch to ground,
 // pulled up): X/Y/Z min on PD2/PD3/PD4, max on PA5/PA6/PA7. Thermistor on
 // ADC2 (PA2), heater MOSFET on OC2 (PD7), TEMP_OK output on PD6. One step is one
-// basic length unit of 1 um (the seed's BLU_PER_MM = 1000).
+// basic length unit of 1 um (the seed's BLU_PER_MM = 1000). Axis U: a
+// ULN2003 unipolar motor on PB4..PB7 (ISP pins: free once flashed), counted
+// like the Uno's U axis.
 #pragma once
 #include "../../hal/avr/gpio.h"
 #include "../drivers/axis_set.h"
 #include "../drivers/step_dir_axis.h"
+#include "../drivers/unipolar_axis.h"
 
 namespace board {
 
@@ -17,7 +20,8 @@ using hal::Pin;
 using Axes = AxisSet<StepDirAxis<'X', Pin<'C', 0>, Pin<'C', 1>, Pin<'B', 0>, true, 1000000>,
                      StepDirAxis<'Y', Pin<'C', 2>, Pin<'C', 3>, Pin<'B', 1>, true, 1000000>,
                      StepDirAxis<'Z', Pin<'C', 4>, Pin<'C', 5>, Pin<'B', 2>, true, 1000000>,
-                     StepDirAxis<'E', Pin<'C', 6>, Pin<'C', 7>, Pin<'B', 3>, true, 1000000>>;
+                     StepDirAxis<'E', Pin<'C', 6>, Pin<'C', 7>, Pin<'B', 3>, true, 1000000>,
+                     UnipolarAxis<'U', Pin<'B', 4>, Pin<'B', 5>, Pin<'B', 6>, Pin<'B', 7>, 4096>>;
 
 constexpr uint32_t kBaud = 115200;
 constexpr uint32_t kStepTimerHz = F_CPU;

@@ -4,19 +4,23 @@
 // Two bipolar steppers through the shield's 74HC595 (D12 latch, D4 clock,
 // D7 output enable active low, D8 data) and two L293D whose enables are D11/D3
 // (stepper 1, axis X) and D5/D6 (stepper 2, axis Y). Travel is counted for a
-// 200-step motor on an 8 mm-lead screw: 25 full steps per mm.
+// 200-step motor on an 8 mm-lead screw: 25 full steps per mm. Axis U is a
+// 28BYJ-48 on a ULN2003 board at A0..A3 (PC0..PC3), counted as 2048 full steps
+// per output turn of a 500 mm circumference pulley: 4096 steps per metre.
 #pragma once
 #include "../../hal/avr/gpio.h"
 #include "../../hal/avr/latch595.h"
 #include "../drivers/axis_set.h"
 #include "../drivers/shield_stepper.h"
+#include "../drivers/unipolar_axis.h"
 
 namespace board {
 
 using hal::Pin;
 using Latch = hal::Latch595<Pin<'B', 4>, Pin<'D', 4>, Pin<'B', 0>, Pin<'D', 7>>;
 using Axes = AxisSet<ShieldStepper<'X', 1, Latch, Pin<'B', 3>, Pin<'D', 3>, 25000>,
-                     ShieldStepper<'Y', 2, Latch, Pin<'D', 5>, Pin<'D', 6>, 25000>>;
+                     ShieldStepper<'Y', 2, Latch, Pin<'D', 5>, Pin<'D', 6>, 25000>,
+                     UnipolarAxis<'U', Pin<'C', 0>, Pin<'C', 1>, Pin<'C', 2>, Pin<'C', 3>, 4096>>;
 
 constexpr uint32_t kBaud = 115200;
 constexpr uint32_t kStepTimerHz = F_CPU;

@@ -2,10 +2,10 @@
 
 #include <avr/pgmspace.h>
 
-#include "../core/command_parser.h"
-#include "../core/line_reader.h"
-#include "../hal/avr/uart.h"
-#include "board.h"
+#include "../../core/command_parser.h"
+#include "../../core/line_reader.h"
+#include "../../hal/avr/uart.h"
+#include "../board.h"
 #include "planner.h"
 #include "step_engine.h"
 

@@ -10,7 +10,7 @@
 #pragma once
 #include <stdint.h>
 
-#include "../core/speed_ramp.h"
+#include "../../core/speed_ramp.h"
 
 namespace planner {
 

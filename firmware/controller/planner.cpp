@@ -1,6 +1,6 @@
 #include "planner.h"
 
-#include "board.h"
+#include "../board.h"
 #include "step_engine.h"
 
 namespace planner {

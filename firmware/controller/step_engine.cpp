@@ -2,8 +2,8 @@
 
 #include <avr/interrupt.h>
 
-#include "../hal/avr/step_timer.h"
-#include "board.h"
+#include "../../hal/avr/step_timer.h"
+#include "../board.h"
 
 namespace engine {
 namespace {

@@ -18,7 +18,7 @@
 #pragma once
 #include <stdint.h>
 
-#include "../core/step_queue.h"
+#include "../../core/step_queue.h"
 
 namespace engine {
 

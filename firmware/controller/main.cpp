@@ -3,8 +3,8 @@
 // protocol forever. All timing-critical work happens in the step interrupt.
 #include <avr/interrupt.h>
 
-#include "../hal/avr/uart.h"
-#include "board.h"
+#include "../../hal/avr/uart.h"
+#include "../board.h"
 #include "protocol.h"
 #include "step_engine.h"
 
