@@ -98,6 +98,7 @@ class AccelStepper {
   void setCurrentPosition(int32_t position) {
     pos_ = target_ = position;
     e_ = 0;
+    v_q12_ = 0;
     frac_q8_ = 0;
   }
 
@@ -130,8 +131,10 @@ class AccelStepper {
     } else {
       e_next = e_ > two_d ? e_ - two_d : 0;  // cannot stop in time: brake
     }
-    const uint32_t interval = take_q8(step_time_q8(e_, e_next));
+    const uint64_t v_next = e_next == e_ ? v_q12_ : speed_q12(e_next);
+    const uint32_t interval = take_q8(step_time_q8(v_q12_ + v_next));
     e_ = e_next;
+    v_q12_ = v_next;
     pos_ += dir_;
     return StepOut{interval, dir_};
   }
@@ -172,14 +175,20 @@ class AccelStepper {
   // Speed in Q12 steps/s from a squared speed (< 2^40).
   static uint64_t speed_q12(uint64_t e) { return isqrt64(e << 24); }
 
-  // Duration of one step from squared speed e0 to e1, Q8 ticks.
-  uint64_t step_time_q8(uint64_t e0, uint64_t e1) const {
-    const uint64_t sum = speed_q12(e0) + speed_q12(e1);
-    if (sum != 0) return (uint64_t(tick_hz_) << 21) / sum;  // 2 f / (v0 + v1)
-    // A one-step move from rest: accelerate at a, brake at d, within the step:
-    // f sqrt(2/a + 2/d), computed in Q4 and returned in Q8.
-    const uint64_t f2 = uint64_t(tick_hz_) * tick_hz_;
-    return uint64_t(isqrt64(((2 * f2 / accel_) + (2 * f2 / decel_)) << 8)) << 4;
+  // Duration of one step whose end speeds (Q12) add up to `sum`, Q8 ticks.
+  // The last result is kept: a cruise then costs no division.
+  uint64_t step_time_q8(uint64_t sum) {
+    if (sum == 0) {
+      // A one-step move from rest: accelerate at a, brake at d, within the
+      // step: f sqrt(2/a + 2/d), computed in Q4 and returned in Q8.
+      const uint64_t f2 = uint64_t(tick_hz_) * tick_hz_;
+      return uint64_t(isqrt64(((2 * f2 / accel_) + (2 * f2 / decel_)) << 8)) << 4;
+    }
+    if (sum != last_sum_) {
+      last_sum_ = sum;
+      last_q8_ = (uint64_t(tick_hz_) << 21) / sum;  // 2 f / (v0 + v1)
+    }
+    return last_q8_;
   }
 
   // Whole ticks of a Q8 duration, carrying the fraction to the next step.
@@ -199,6 +208,8 @@ class AccelStepper {
   int32_t pos_ = 0;
   int32_t target_ = 0;
   uint64_t e_ = 0;      // squared speed after the last step, steps^2/s^2
+  uint64_t v_q12_ = 0;  // sqrt(e_), Q12
+  uint64_t last_sum_ = 0, last_q8_ = 0;  // step_time_q8() cache
   int8_t dir_ = 1;      // direction of the current motion
   uint8_t frac_q8_ = 0; // tick fraction carried between steps
 };
