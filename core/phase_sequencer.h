@@ -37,6 +37,10 @@ inline uint8_t half_step_pattern(uint8_t index) {
 class PhaseSequencer {
  public:
   explicit PhaseSequencer(StepMode mode = StepMode::two_phase) : mode_(mode) {}
+  // Starts on a given half-step state (taken modulo 8), coils still off: a
+  // board whose power-up state is fixed (the seed-002 driver board starts on
+  // A+B+, index 1) holds that state on its first hold().
+  PhaseSequencer(StepMode mode, uint8_t start_index) : mode_(mode), index_(uint8_t(start_index & 7)) {}
 
   StepMode mode() const { return mode_; }
   void set_mode(StepMode mode) { mode_ = mode; }

@@ -1,5 +1,6 @@
 #include "machine.h"
 
+#include <avr_adc.h>
 #include <avr_ioport.h>
 #include <sim_avr.h>
 #include <sim_elf.h>
@@ -254,6 +255,16 @@ const std::vector<PinEdge>& Machine::watch_pin(char port, uint8_t bit) {
 
 void Machine::set_input(char port, uint8_t bit, bool level) {
   avr_raise_irq(avr_io_getirq(avr_, AVR_IOCTL_IOPORT_GETIRQ(port), bit), level ? 1 : 0);
+}
+
+void Machine::set_adc_millivolts(uint8_t channel, uint32_t mv) {
+  if (channel > 7) throw std::runtime_error("ADC channel out of range");
+  if (!avr_->avcc) avr_->avcc = 5000;
+  if (!avr_->vcc) avr_->vcc = 5000;
+  if (!avr_->aref) avr_->aref = 5000;
+  avr_irq_t* irq = avr_io_getirq(avr_, AVR_IOCTL_ADC_GETIRQ, ADC_IRQ_ADC0 + channel);
+  if (!irq) throw std::runtime_error(std::string("no ADC on ") + board_.mcu);
+  avr_raise_irq(irq, mv);
 }
 
 RunEnd Machine::run(const std::function<bool()>& stop, uint64_t budget) {

@@ -76,6 +76,11 @@ class Machine {
   const std::vector<PinEdge>& watch_pin(char port, uint8_t bit);
   // Drives an input pin from outside (a switch, an encoder, a step source).
   void set_input(char port, uint8_t bit, bool level);
+  // Puts `mv` millivolts on ADC input `channel` (0..7), as a sensor would.
+  // The first call also sets AVCC, VCC and AREF to 5 V if nothing set them
+  // (simavr otherwise converts against 3.3 V). simavr samples the input when
+  // the firmware reads ADCL/ADCH, not at the start of the conversion.
+  void set_adc_millivolts(uint8_t channel, uint32_t mv);
 
   void set_progress(bool on) { progress_ = on; }
 

@@ -1,0 +1,43 @@
+// External interrupt INT0 (the step input of the driver board).
+//
+// Contract
+//   enable_int0_rising() makes every rising edge on INT0 raise INT0_vect:
+//   ISC01:ISC00 = 11 (datasheet "External Interrupts", table "Interrupt 0 Sense
+//   Control"), a flag left from before is cleared first so no stale edge is
+//   taken, then INT0 is unmasked. The pin itself stays as the caller configured
+//   it (input, with or without pull-up). The ISR is the caller's.
+//
+//   Edge interrupts are latched in INTF0: an edge that arrives while the ISR
+//   (or any other) runs is kept and served afterwards, but a second edge
+//   before that is lost (one flag, no counter), which bounds the step rate.
+//
+//   ATmega16/32 keep the bits in MCUCR/GICR/GIFR; the ATmega328P in
+//   EICRA/EIMSK/EIFR with the same bit names.
+#pragma once
+#include <stdint.h>
+#include "family.h"
+
+namespace hal {
+namespace ext_int {
+
+#if defined(GICR)
+#define HAL_EXTINT_SENSE MCUCR
+#define HAL_EXTINT_MASK GICR
+#define HAL_EXTINT_FLAGS GIFR
+#else
+#define HAL_EXTINT_SENSE EICRA
+#define HAL_EXTINT_MASK EIMSK
+#define HAL_EXTINT_FLAGS EIFR
+#endif
+
+inline void enable_int0_rising() {
+  HAL_EXTINT_MASK &= uint8_t(~_BV(INT0));  // no interrupt while the sense changes
+  HAL_EXTINT_SENSE |= _BV(ISC01) | _BV(ISC00);
+  HAL_EXTINT_FLAGS = _BV(INTF0);           // write one to clear
+  HAL_EXTINT_MASK |= _BV(INT0);
+}
+
+inline void disable_int0() { HAL_EXTINT_MASK &= uint8_t(~_BV(INT0)); }
+
+}  // namespace ext_int
+}  // namespace hal
