@@ -92,6 +92,19 @@ std::vector<uint8_t> states_after_pulses(DriverBoard& b, int n) {
   return out;
 }
 
+TEST(driver_board, DescriptorNamesTheCoilsInSequencerOrder) {
+  DriverBoard b;
+  const am::BoardDescriptor& d = b.m().board();
+  EXPECT_STREQ(d.mcu, "atmega32");
+  EXPECT_EQ(d.f_cpu, 16000000u);
+  ASSERT_EQ(d.axis_count, 1);
+  EXPECT_EQ(d.axes[0].kind, am::AxisKind::unipolar4);
+  // IN1..IN4 = A+, B+, A-, B- = a, b, c, d = PB0, PB2, PB1, PB3.
+  const uint8_t expected[4] = {am::pin_code('B', 0), am::pin_code('B', 2), am::pin_code('B', 1),
+                               am::pin_code('B', 3)};
+  for (int k = 0; k < 4; ++k) EXPECT_EQ(d.axes[0].pins[k], expected[k]) << "IN" << k + 1;
+}
+
 TEST(driver_board, PowerUpLeavesCoilsOffAndInputsFloating) {
   DriverBoard b;
   b.run_for(20000);  // a dozen ADC conversions
