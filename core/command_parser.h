@@ -12,12 +12,15 @@
 //   POS                                                   report positions
 //   RELEASE                                               coils / drivers off
 //   WAIT                                                  answer once idle
+//   MODE <axis><n>                                        excitation mode of a
+//        coil-driven axis: n = 0 wave, 1 two-phase, 2 half step, 16/32/64
+//        microsteps; the mode number is returned in `steps`
 #pragma once
 #include <stdint.h>
 
 namespace am {
 
-enum class CommandKind : uint8_t { move, position, release, wait };
+enum class CommandKind : uint8_t { move, position, release, wait, mode };
 
 enum class ParseError : uint8_t {
   none,
@@ -30,6 +33,7 @@ enum class ParseError : uint8_t {
   missing_axis,     // MOVE without an axis word
   two_axes,         // MOVE names more than one axis
   unexpected_word,  // a word this command does not take
+  bad_mode,         // MODE number other than 0, 1, 2, 16, 32, 64
 };
 
 struct Command {
@@ -91,13 +95,14 @@ inline ParseError parse_command(const char* p, Command& out) {
   if (keyword(p, "POS")) out.kind = CommandKind::position;
   else if (keyword(p, "RELEASE")) out.kind = CommandKind::release;
   else if (keyword(p, "WAIT")) out.kind = CommandKind::wait;
+  else if (keyword(p, "MODE")) out.kind = CommandKind::mode;
   else if (!keyword(p, "MOVE")) return ParseError::unknown_command;
 
   uint8_t seen = 0;  // bit per word letter: axis, F, A, D
   for (;;) {
     while (blank(*p)) ++p;
     if (!*p) break;
-    if (out.kind != CommandKind::move) return ParseError::unexpected_word;
+    if (out.kind != CommandKind::move && out.kind != CommandKind::mode) return ParseError::unexpected_word;
     const char letter = upper(*p++);
     if (!(letter >= 'A' && letter <= 'Z')) return ParseError::bad_word;
     int32_t value;
@@ -109,6 +114,8 @@ inline ParseError parse_command(const char* p, Command& out) {
       bit = 1;
       out.axis = letter;
       out.steps = value;
+    } else if (out.kind == CommandKind::mode) {
+      return ParseError::unexpected_word;  // MODE takes its axis word only
     } else if (letter == 'F' || letter == 'A' || letter == 'D') {
       bit = letter == 'F' ? kGivenRate : letter == 'A' ? kGivenAccel : kGivenDecel;
       if (seen & bit) return ParseError::duplicate_word;
@@ -119,7 +126,12 @@ inline ParseError parse_command(const char* p, Command& out) {
     }
     seen |= bit;
   }
-  if (out.kind == CommandKind::move && !(seen & 1)) return ParseError::missing_axis;
+  if ((out.kind == CommandKind::move || out.kind == CommandKind::mode) && !(seen & 1))
+    return ParseError::missing_axis;
+  if (out.kind == CommandKind::mode) {
+    const int32_t m = out.steps;
+    if (!(m == 0 || m == 1 || m == 2 || m == 16 || m == 32 || m == 64)) return ParseError::bad_mode;
+  }
   out.given = uint8_t(seen & ~1);
   return ParseError::none;
 }

@@ -121,4 +121,125 @@ class Microstepper {
   bool energised_ = false;
 };
 
+
+// ---------------------------------------------------------------------------
+// Excitation modes on one common rotor angle (added for the shield's modes).
+//
+// Contract
+//   The rotor angle is a uint8_t in 1/64 of a full step: 256 units are one
+//   electrical cycle (4 full steps), so the angle wraps by itself. Half-step
+//   state j of half_step_pattern() sits at angle 32 j. Every mode is a grid on
+//   that angle (unit step s, offset o):
+//     wave (0): s 64, o 0    two-phase (1): s 64, o 32    half (2): s 32, o 0
+//     16 / 32 / 64 microsteps: s 4 / 2 / 1, o 0
+//   step() moves to the next grid point of the current mode strictly ahead (or
+//   behind), so after a mode change on an angle that is off the new grid the
+//   first step is a partial one and the rotor never jumps. set_mode() keeps
+//   the angle. snap_down() (the first energise after power-up, when the rotor
+//   position is unknown) moves to the grid point at or behind the angle: from
+//   angle 0 two-phase holds B-A+ and steps to A+B+, as PhaseSequencer and
+//   AFMotor do.
+//
+//   ExcitationTable holds, for one output wiring, what each angle shows:
+//   micro[a] the sine currents of angle a (Microstepper<64> mapping) with the
+//   bits of the coils that carry current (a coil at duty 0 gets both inputs
+//   low: fast PWM at OCR 0 still spikes one tick, the bridge must not drive);
+//   full[j] half-step state j with both enables at 255 (full current).
+namespace excitation {
+constexpr uint8_t wave = 0, two_phase = 1, half = 2, micro16 = 16, micro32 = 32, micro64 = 64;
+constexpr bool valid(uint8_t mode) {
+  return mode == wave || mode == two_phase || mode == half || mode == micro16 || mode == micro32 ||
+         mode == micro64;
+}
+constexpr bool microstepping(uint8_t mode) { return mode >= micro16; }
+constexpr uint8_t grid_step(uint8_t mode) {
+  return mode == wave || mode == two_phase ? 64 : mode == half ? 32 : uint8_t(64 / mode);
+}
+constexpr uint8_t grid_offset(uint8_t mode) { return mode == two_phase ? 32 : 0; }
+}  // namespace excitation
+
+class ExcitationCursor {
+ public:
+  static constexpr uint8_t units_per_full_step = 64;
+
+  // constexpr, so a static cursor needs no constructor call at start-up.
+  constexpr ExcitationCursor() : ExcitationCursor(excitation::two_phase) {}
+  explicit constexpr ExcitationCursor(uint8_t mode)
+      : mode_(mode),
+        micro_(excitation::microstepping(mode)),
+        mask_(uint8_t(-excitation::grid_step(mode))),
+        fwd_sub_(excitation::grid_offset(mode)),
+        fwd_add_(uint8_t(excitation::grid_offset(mode) + excitation::grid_step(mode))),
+        rev_sub_(uint8_t(excitation::grid_offset(mode) + 1)),
+        rev_add_(excitation::grid_offset(mode)) {}
+
+  // False (and nothing changes) for a mode number that is no mode.
+  bool set_mode(uint8_t mode) {
+    if (!excitation::valid(mode)) return false;
+    const uint8_t angle = angle_;
+    *this = ExcitationCursor(mode);
+    angle_ = angle;
+    return true;
+  }
+
+  // Branch-free apart from the direction: it runs in the step interrupt.
+  uint8_t step(bool forward) {
+    angle_ = forward ? uint8_t(((angle_ - fwd_sub_) & mask_) + fwd_add_)
+                     : uint8_t(((angle_ - rev_sub_) & mask_) + rev_add_);
+    return angle_;
+  }
+
+  uint8_t snap_down() {
+    angle_ = uint8_t(((angle_ - fwd_sub_) & mask_) + fwd_sub_);
+    return angle_;
+  }
+
+  bool on_grid() const { return uint8_t((angle_ - fwd_sub_) & uint8_t(~mask_)) == 0; }
+  uint8_t angle() const { return angle_; }
+  uint8_t mode() const { return mode_; }
+  bool microstepping() const { return micro_; }
+
+ private:
+  uint8_t angle_ = 0;
+  uint8_t mode_;
+  bool micro_;
+  uint8_t mask_, fwd_sub_, fwd_add_, rev_sub_, rev_add_;
+};
+
+struct ExcitationEntry {
+  uint8_t bits;   // output bits of the energised coil ends
+  uint8_t pwm_a;  // winding A enable duty
+  uint8_t pwm_b;  // winding B enable duty
+};
+
+struct ExcitationTable {
+  ExcitationEntry micro[256];
+  ExcitationEntry full[8];
+
+  // a_pos .. b_neg: the output bit of each coil end (e.g. a latch bit).
+  constexpr ExcitationTable(uint8_t a_pos, uint8_t b_pos, uint8_t a_neg, uint8_t b_neg)
+      : micro(), full() {
+    const MicrostepCurve<64> curve{};
+    // Quadrant q lights A+B+, B+A-, A-B-, B-A+; the first coil named is
+    // winding A in even quadrants, winding B in odd ones.
+    const uint8_t a_bit[4] = {a_pos, a_neg, a_neg, a_pos};
+    const uint8_t b_bit[4] = {b_pos, b_pos, b_neg, b_neg};
+    for (uint16_t i = 0; i < 256; ++i) {
+      const uint8_t q = uint8_t(i >> 6), cs = uint8_t(i & 63);
+      const uint8_t falling = curve.duty[64 - cs], rising = curve.duty[cs];
+      const uint8_t pa = (q & 1) ? rising : falling;
+      const uint8_t pb = (q & 1) ? falling : rising;
+      micro[i] = ExcitationEntry{uint8_t((pa ? a_bit[q] : 0) | (pb ? b_bit[q] : 0)), pa, pb};
+    }
+    const uint8_t ends[4] = {a_pos, b_pos, a_neg, b_neg};
+    for (uint8_t j = 0; j < 8; ++j) {
+      // half_step_pattern() is not constexpr; the same cycle, spelled out:
+      // state j lights end j/2 and, for odd j, also the next end.
+      const uint8_t first = ends[(j >> 1) & 3];
+      const uint8_t second = (j & 1) ? ends[((j >> 1) + 1) & 3] : 0;
+      full[j] = ExcitationEntry{uint8_t(first | second), 255, 255};
+    }
+  }
+};
+
 }  // namespace am

@@ -2,6 +2,7 @@
 
 #include <avr_adc.h>
 #include <avr_ioport.h>
+#include <avr_timer.h>
 #include <sim_avr.h>
 #include <sim_elf.h>
 #include <sim_interrupts.h>
@@ -265,6 +266,38 @@ void Machine::set_adc_millivolts(uint8_t channel, uint32_t mv) {
   avr_irq_t* irq = avr_io_getirq(avr_, AVR_IOCTL_ADC_GETIRQ, ADC_IRQ_ADC0 + channel);
   if (!irq) throw std::runtime_error(std::string("no ADC on ") + board_.mcu);
   avr_raise_irq(irq, mv);
+}
+
+struct Machine::PwmHook {
+  avr_t* avr;
+  std::vector<PwmSample> log;
+};
+
+void Machine::on_pwm_irq(avr_irq_t*, uint32_t value, void* param) {
+  auto* hook = static_cast<PwmHook*>(param);
+  hook->log.push_back({hook->avr->cycle, uint16_t(value)});
+}
+
+const std::vector<PwmSample>& Machine::watch_pwm(char timer, uint8_t channel) {
+  if (channel > 1) throw std::runtime_error("PWM channel is 0 (A) or 1 (B)");
+  const int key = (timer << 1) | channel;
+  auto it = pwm_hooks_.find(key);
+  if (it != pwm_hooks_.end()) return it->second->log;
+  avr_irq_t* irq = avr_io_getirq(avr_, AVR_IOCTL_TIMER_GETIRQ(timer), TIMER_IRQ_OUT_PWM0 + channel);
+  if (!irq) throw std::runtime_error(std::string("no timer ") + timer + " on " + board_.mcu);
+  PwmHook* hook = new PwmHook{avr_, {}};
+  pwm_hooks_[key].reset(hook);
+  avr_irq_register_notify(irq, &Machine::on_pwm_irq, hook);
+  return hook->log;
+}
+
+uint16_t Machine::pwm_duty_at(const std::vector<PwmSample>& log, uint64_t cycle) {
+  uint16_t duty = 0;  // the OCR reset value
+  for (const PwmSample& s : log) {
+    if (s.cycle > cycle) break;
+    duty = s.duty;
+  }
+  return duty;
 }
 
 RunEnd Machine::run(const std::function<bool()>& stop, uint64_t budget) {

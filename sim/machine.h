@@ -13,6 +13,9 @@
 //                      between the end of .bss and RAMEND before reset and
 //                      looking for the deepest overwritten byte;
 //   - watch_pin():     raw edges of any pin, with cycle stamps.
+//   - watch_pwm():     duty (OCR value) of a timer's PWM channel, logged when
+//                      the firmware writes an OCR in a PWM mode and the value
+//                      changed (simavr's TIMER_IRQ_OUT_PWM0/1), cycle-stamped.
 // run() always ends: when the stop condition holds, when the cycle budget is
 // spent (a hung image fails a test instead of hanging CI) or when the core
 // stops or crashes.
@@ -42,6 +45,11 @@ struct IsrStats {
 struct PinEdge {
   uint64_t cycle;
   bool level;
+};
+
+struct PwmSample {
+  uint64_t cycle;
+  uint16_t duty;
 };
 
 enum class RunEnd { done, budget_spent, cpu_stopped };
@@ -82,6 +90,12 @@ class Machine {
   // the firmware reads ADCL/ADCH, not at the start of the conversion.
   void set_adc_millivolts(uint8_t channel, uint32_t mv);
 
+  // Starts logging the duty of timer ('0'..'5') channel 0 (A) or 1 (B); call
+  // before running. Only changes are logged (simavr filters repeats), so the
+  // duty at a cycle is the last sample at or before it (pwm_duty_at()).
+  const std::vector<PwmSample>& watch_pwm(char timer, uint8_t channel);
+  static uint16_t pwm_duty_at(const std::vector<PwmSample>& log, uint64_t cycle);
+
   void set_progress(bool on) { progress_ = on; }
 
  private:
@@ -111,6 +125,9 @@ class Machine {
   std::map<int, uint64_t> isr_entry_;
   std::vector<std::unique_ptr<std::pair<Machine*, int>>> isr_hooks_;
   std::map<int, std::vector<PinEdge>> watched_;
+  struct PwmHook;
+  static void on_pwm_irq(avr_irq_t* irq, uint32_t value, void* param);
+  std::map<int, std::unique_ptr<PwmHook>> pwm_hooks_;
   uint16_t paint_start_ = 0;
   bool progress_ = false;
 };

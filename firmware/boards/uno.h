@@ -10,6 +10,7 @@
 #pragma once
 #include "../../hal/avr/gpio.h"
 #include "../../hal/avr/latch595.h"
+#include "../../hal/avr/pwm8.h"
 #include "../drivers/axis_set.h"
 #include "../drivers/shield_stepper.h"
 #include "../drivers/unipolar_axis.h"
@@ -18,8 +19,10 @@ namespace board {
 
 using hal::Pin;
 using Latch = hal::Latch595<Pin<'B', 4>, Pin<'D', 4>, Pin<'B', 0>, Pin<'D', 7>>;
-using Axes = AxisSet<ShieldStepper<'X', 1, Latch, Pin<'B', 3>, Pin<'D', 3>, 25000>,
-                     ShieldStepper<'Y', 2, Latch, Pin<'D', 5>, Pin<'D', 6>, 25000>,
+// Enables by 62.5 kHz PWM: stepper 1 M1 = D11 (OC2A), M2 = D3 (OC2B);
+// stepper 2 M3 = D6 (OC0A), M4 = D5 (OC0B). Timer0 is free: no millis() here.
+using Axes = AxisSet<ShieldStepper<'X', 1, Latch, hal::Pwm8<2, 'A'>, hal::Pwm8<2, 'B'>, 25000>,
+                     ShieldStepper<'Y', 2, Latch, hal::Pwm8<0, 'A'>, hal::Pwm8<0, 'B'>, 25000>,
                      UnipolarAxis<'U', Pin<'C', 0>, Pin<'C', 1>, Pin<'C', 2>, Pin<'C', 3>, 4096>>;
 
 constexpr uint32_t kBaud = 115200;

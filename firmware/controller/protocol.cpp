@@ -6,6 +6,7 @@
 #include "../../core/line_reader.h"
 #include "../../hal/avr/uart.h"
 #include "../board.h"
+#include "../drivers/shield_stepper.h"  // AxisModes: MODE on any board
 #include "planner.h"
 #include "step_engine.h"
 
@@ -40,6 +41,7 @@ const char* parse_error_text(am::ParseError e) {
     case am::ParseError::missing_axis: return PSTR("MOVE needs an axis word");
     case am::ParseError::two_axes: return PSTR("MOVE takes one axis");
     case am::ParseError::unexpected_word: return PSTR("word not allowed here");
+    case am::ParseError::bad_mode: return PSTR("mode must be 0, 1, 2, 16, 32 or 64");
     default: return PSTR("empty line");
   }
 }
@@ -95,6 +97,16 @@ bool execute(const am::Command& c) {
     case am::CommandKind::wait:
       if (!motion_done()) return false;
       ok();
+      return true;
+    case am::CommandKind::mode:
+      // Like POS: only an idle axis changes mode (docs/modes.md).
+      if (!motion_done()) return false;
+      switch (AxisModes<board::Axes>::set(c.axis, uint8_t(c.steps))) {
+        case ModeResult::ok: ok(); break;
+        case ModeResult::no_axis: error(PSTR("no such axis on this board")); break;
+        case ModeResult::no_modes: error(PSTR("axis has no excitation modes")); break;
+        default: error(PSTR("mode not available on this axis")); break;
+      }
       return true;
   }
   return true;

@@ -1,17 +1,42 @@
 // A bipolar stepper on the Adafruit Motor Shield v1: its four bridge inputs
-// sit on the shield's 74HC595 and its two L293D enables on PWM-capable pins.
+// sit on the shield's 74HC595 and its two L293D enables on PWM channels.
+//
+// Contract
+//   Modes (set_mode, docs/modes.md): 0 wave, 1 two-phase (power-up default),
+//   2 half step, 16/32/64 microsteps per full step. The rotor is one angle in
+//   1/64 full step (am::ExcitationCursor), so a mode change never moves it.
+//   - full/half/wave: the latch shows the half-step state, both enables at 255
+//     (constant high in fast PWM);
+//   - microsteps: the enables carry the sine currents (8-bit fast PWM, EnableA
+//     = winding A, EnableB = winding B), the latch the coils that carry
+//     current and their polarity (a winding at duty 0 gets both inputs low).
+//   energise() shows the current angle (the first one after power-up snaps to
+//   the mode's grid, as PhaseSequencer does); release() turns both windings off
+//   and keeps the angle. EnableA/EnableB: types with init() and set(uint8_t)
+//   (hal/avr/pwm8.h). energise() may run while the step interrupt moves
+//   this or the other shield stepper (the planner holds the next move's axis
+//   once the previous move is queued), so the main-context entry points
+//   update the shared latch image with interrupts off.
 //
 // Both shield steppers share the latch, so the latch image lives in one place
 // (ShieldLatch) and a step rewrites only the four bits of its own stepper
-// before shifting the whole byte out.
+// before shifting the whole byte out. What a step shows comes from a table in
+// flash built at compile time (768 bytes a stepper): the step interrupt does
+// the angle arithmetic, three LPM reads, two OCR writes and the latch shift,
+// the same instructions in every mode but for one branch (sine table or
+// half-step table).
 #pragma once
+#include <avr/io.h>
+#include <avr/pgmspace.h>
 #include <stdint.h>
 
 #include "../../core/board_descriptor.h"
+#include "../../core/microstep.h"
 #include "../../core/phase_sequencer.h"
 #include "../../core/shield_wiring.h"
 #include "../../hal/avr/gpio.h"
 #include "../../hal/avr/latch595.h"
+#include "axis_set.h"
 
 template <typename Latch>
 struct ShieldLatch {
@@ -20,25 +45,64 @@ struct ShieldLatch {
 template <typename Latch>
 uint8_t ShieldLatch<Latch>::image = 0;
 
+// One table per shield stepper number, in flash.
+template <uint8_t Number>
+struct ShieldTable {
+  static constexpr am::ShieldStepperWiring wiring = am::shield_wiring(Number);
+  static const am::ExcitationTable value;
+};
+template <uint8_t Number>
+const am::ExcitationTable ShieldTable<Number>::value PROGMEM =
+    am::ExcitationTable(wiring.a_pos, wiring.b_pos, wiring.a_neg, wiring.b_neg);
+
 template <char Name, uint8_t Number, typename Latch, typename EnableA, typename EnableB,
           uint32_t StepsPerMetre>
 struct ShieldStepper {
   static constexpr char name = Name;
-  static am::PhaseSequencer sequencer;
+  static am::ExcitationCursor cursor;
+  static bool energised;
+  static bool placed;  // the angle is where the rotor is (energised once)
 
   static void init() {
-    EnableA::output();
-    EnableB::output();
-    EnableA::high();  // full current: the bridges follow the latch
-    EnableB::high();
+    EnableA::init();
+    EnableB::init();
   }
-  static void energise() { show(sequencer.hold()); }
+  static void energise() {
+    const uint8_t sreg = SREG;
+    __asm__ __volatile__("cli" ::: "memory");
+    if (!placed) {
+      cursor.snap_down();
+      placed = true;
+    }
+    energised = true;
+    const uint8_t a = cursor.angle();
+    // Off its mode's grid (after a mode change) the rotor is held where it is
+    // by the sine currents of its exact angle; the next step reaches the grid.
+    if (!cursor.microstepping() && cursor.on_grid()) show(&table().full[a >> 5]);
+    else show(&table().micro[a]);
+    SREG = sreg;
+  }
   static void release() {
-    sequencer.release();
-    show(am::coil::off);
+    const uint8_t sreg = SREG;
+    __asm__ __volatile__("cli" ::: "memory");
+    energised = false;
+    EnableA::set(0);
+    EnableB::set(0);
+    write_latch(0);
+    SREG = sreg;
+  }
+  // Called only while the axis is idle (the protocol waits for motion to end).
+  static bool set_mode(uint8_t mode) {
+    if (!cursor.set_mode(mode)) return false;
+    if (energised) energise();  // same angle: full current on a grid point
+    return true;
   }
   static void set_direction(bool) {}
-  static void pulse_begin(bool forward) { show(sequencer.step(forward)); }
+  static void pulse_begin(bool forward) {
+    const uint8_t a = cursor.step(forward);
+    if (cursor.microstepping()) show(&table().micro[a]);
+    else show(&table().full[a >> 5]);
+  }
   static void pulse_end() {}
 
   static constexpr am::AxisDescriptor descriptor() {
@@ -52,13 +116,64 @@ struct ShieldStepper {
   }
 
  private:
-  static void show(uint8_t pattern) {
-    constexpr am::ShieldStepperWiring wiring = am::shield_wiring(Number);
+  static const am::ExcitationTable& table() { return ShieldTable<Number>::value; }
+
+  // Duties first: OCR writes take effect at the next PWM period anyway, the
+  // latch at once, so the new coils never see a stale duty for long.
+  static void show(const am::ExcitationEntry* e) {
+    EnableA::set(pgm_read_byte(&e->pwm_a));
+    EnableB::set(pgm_read_byte(&e->pwm_b));
+    write_latch(pgm_read_byte(&e->bits));
+  }
+  static void write_latch(uint8_t bits) {
+    constexpr uint8_t mask = am::shield_wiring(Number).mask();
     uint8_t& image = ShieldLatch<Latch>::image;
-    image = uint8_t((image & ~wiring.mask()) | wiring.latch_bits(pattern));
+    image = uint8_t((image & ~mask) | bits);
     Latch::write(image);
   }
 };
 
 template <char Name, uint8_t Number, typename Latch, typename EnableA, typename EnableB, uint32_t S>
-am::PhaseSequencer ShieldStepper<Name, Number, Latch, EnableA, EnableB, S>::sequencer;
+am::ExcitationCursor ShieldStepper<Name, Number, Latch, EnableA, EnableB, S>::cursor;
+template <char Name, uint8_t Number, typename Latch, typename EnableA, typename EnableB, uint32_t S>
+bool ShieldStepper<Name, Number, Latch, EnableA, EnableB, S>::energised;
+template <char Name, uint8_t Number, typename Latch, typename EnableA, typename EnableB, uint32_t S>
+bool ShieldStepper<Name, Number, Latch, EnableA, EnableB, S>::placed;
+
+// MODE for any board's axis set (used by the protocol). An axis takes a mode
+// through its own `static bool set_mode(uint8_t)` if it has one, else, for
+// wave/two-phase/half, through a PhaseSequencer member `sequencer` (the
+// ULN2003 axis); axes with neither (step/dir) have no excitation modes.
+enum class ModeResult : uint8_t { ok, no_axis, no_modes, unsupported };
+
+template <typename Set>
+struct AxisModes;
+
+template <>
+struct AxisModes<AxisSet<>> {
+  static ModeResult set(char, uint8_t) { return ModeResult::no_axis; }
+};
+
+template <typename First, typename... Rest>
+struct AxisModes<AxisSet<First, Rest...>> {
+  static ModeResult set(char axis, uint8_t mode) {
+    if (First::name != axis) return AxisModes<AxisSet<Rest...>>::set(axis, mode);
+    return apply<First>(mode, 0, 0);
+  }
+
+ private:
+  template <typename A>
+  static auto apply(uint8_t mode, int, int) -> decltype(A::set_mode(mode), ModeResult()) {
+    return A::set_mode(mode) ? ModeResult::ok : ModeResult::unsupported;
+  }
+  template <typename A>
+  static auto apply(uint8_t mode, int, long) -> decltype(A::sequencer.set_mode(am::StepMode::wave), ModeResult()) {
+    if (mode > am::excitation::half) return ModeResult::unsupported;
+    A::sequencer.set_mode(am::StepMode(mode));
+    return ModeResult::ok;
+  }
+  template <typename A>
+  static ModeResult apply(uint8_t, long, long) {
+    return ModeResult::no_modes;
+  }
+};

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "core/command_parser.h"
 
 using am::Command;
@@ -71,4 +73,26 @@ TEST(CommandParser, NumbersAreRangeChecked) {
   EXPECT_EQ(c.steps, -2147483647);
   EXPECT_EQ(parse("MOVE X2147483648"), ParseError::out_of_range);
   EXPECT_EQ(parse("MOVE X99999999999999999999"), ParseError::out_of_range);
+}
+
+TEST(CommandParser, ModeTakesOneAxisAndAModeNumber) {
+  Command c;
+  const int32_t modes[] = {0, 1, 2, 16, 32, 64};
+  for (int32_t m : modes) {
+    const std::string line = "MODE X" + std::to_string(m);
+    ASSERT_EQ(parse(line.c_str(), c), ParseError::none) << line;
+    EXPECT_EQ(c.kind, CommandKind::mode);
+    EXPECT_EQ(c.axis, 'X');
+    EXPECT_EQ(c.steps, m);
+  }
+  ASSERT_EQ(parse("mode y16", c), ParseError::none);
+  EXPECT_EQ(c.axis, 'Y');
+  EXPECT_EQ(parse("MODE X3"), ParseError::bad_mode);
+  EXPECT_EQ(parse("MODE X8"), ParseError::bad_mode);
+  EXPECT_EQ(parse("MODE X128"), ParseError::bad_mode);
+  EXPECT_EQ(parse("MODE X-1"), ParseError::bad_mode);
+  EXPECT_EQ(parse("MODE"), ParseError::missing_axis);
+  EXPECT_EQ(parse("MODE X16 Y16"), ParseError::two_axes);
+  EXPECT_EQ(parse("MODE X16 F100"), ParseError::unexpected_word);
+  EXPECT_EQ(parse("MODEX16"), ParseError::unknown_command);
 }
