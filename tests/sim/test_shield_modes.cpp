@@ -185,6 +185,9 @@ void check_micro_mode(const Stepper& s, int n) {
   const auto& got = r.m->serial().received();
   EXPECT_TRUE(std::any_of(got.begin(), got.end(), [&](const std::string& l) { return l.rfind(pos, 0) == 0; }))
       << pos;
+  int half_steps = 0, furthest = 0;
+  for (int8_t d : r.m->axis(s.axis)->step_deltas) furthest = std::max(furthest, half_steps += d);
+  EXPECT_EQ(furthest, 9);  // 4.5 steps at the far end
   EXPECT_DOUBLE_EQ(r.m->axis(s.axis)->steps(), 0.0);
   EXPECT_EQ(r.m->axis(s.axis)->decode_errors, 0u);
 }
