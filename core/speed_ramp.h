@@ -63,14 +63,7 @@ class SpeedRamp {
   RampError plan(uint32_t steps, const RampConfig& cfg) {
     const RampError err = check(cfg);
     if (err != RampError::none) return err;
-    cfg_ = cfg;
-    remaining_ = steps;
-    c_ = first_delay_q4(cfg.tick_hz, cfg.accel);
-    c_min_ = (cfg.tick_hz << 4) / cfg.max_rate;
-    rest_ = 0;
-    n_ = 0;
-    stop_steps_ = 0;
-    phase_ = Phase::accel;
+    start(steps, cfg, first_delay_q4(cfg.tick_hz, cfg.accel), (cfg.tick_hz << 4) / cfg.max_rate);
     return RampError::none;
   }
 
@@ -85,14 +78,7 @@ class SpeedRamp {
     if (accel == 0 || decel == 0) return RampError::zero_accel;
     // 2 c + rest must stay below 2^32 in the recurrence.
     if (c0_q4 >= (uint32_t(1) << 30)) return RampError::out_of_range;
-    cfg_ = RampConfig{0, 0, accel, decel};
-    remaining_ = steps;
-    c_ = c0_q4;
-    c_min_ = cruise_q4;
-    rest_ = 0;
-    n_ = 0;
-    stop_steps_ = 0;
-    phase_ = Phase::accel;
+    start(steps, RampConfig{0, 0, accel, decel}, c0_q4, cruise_q4);
     return RampError::none;
   }
 
@@ -100,8 +86,8 @@ class SpeedRamp {
   // on entering cruise or deceleration the step itself may still change it.
   uint32_t accel_delay_q4() const { return c_; }
 
-  bool finished() const { return remaining_ == 0; }
-  uint32_t remaining() const { return remaining_; }
+  bool finished() const { return remaining_ == 0 && split_.count == 0; }
+  uint32_t remaining() const { return remaining_ + split_.count; }
 
   // Ticks before the next step; 0 once the move is finished.
   uint32_t next() {
@@ -112,19 +98,47 @@ class SpeedRamp {
   // The next run of equal intervals (count 0 once finished).
   StepRun next_run() { return take(0xFFFF); }
 
+  // Fast ramps: from now on, next_run() groups ramp steps whose delay is
+  // below `below_ticks` into runs of up to sqrt(n) steps at one delay (n =
+  // steps from the nearer end of the ramp), so the planner spends one square
+  // root per run instead of one division per step and keeps ahead of a step
+  // engine running at 100+ kHz. A run's delay is the mean of the recurrence's
+  // first and last delay over the run, which keeps every step within 1/4
+  // step of the per-step schedule (tests/host/test_speed_ramp.cpp). The
+  // cruise delay is then clamped to the exact max_rate. 0 turns it off (the
+  // default: per-step seed behaviour).
+  void batch_below(uint32_t below_ticks) { batch_below_q4_ = below_ticks << 4; }
+
  private:
   enum class Phase : uint8_t { accel, cruise, decel };
 
   static uint32_t round_q4(uint32_t q4) { return (q4 + 8) >> 4; }
 
+  void start(uint32_t steps, const RampConfig& cfg, uint32_t c0_q4, uint32_t cruise_q4) {
+    cfg_ = cfg;
+    remaining_ = steps;
+    c_ = c0_q4;
+    c_min_ = cruise_q4;
+    rest_ = 0;
+    n_ = 0;
+    stop_steps_ = 0;
+    phase_ = Phase::accel;
+    split_ = StepRun{0, 0};
+    invariant_valid_ = false;
+  }
+
   // Steps needed to stop after n accelerating steps: n * accel / decel.
+  // (Equal rates, the common case, skip the 64-bit division: it is called
+  // on every step.)
   uint32_t stopping_steps(uint32_t n) const {
+    if (cfg_.accel == cfg_.decel) return n;
     return uint32_t((uint64_t(n) * cfg_.accel + cfg_.decel / 2) / cfg_.decel);
   }
 
   void enter_decel() {
     phase_ = Phase::decel;
     rest_ = 0;
+    invariant_valid_ = false;
   }
 
   // Decides the phase of the step about to be emitted and updates c_ to its
@@ -136,6 +150,7 @@ class SpeedRamp {
       } else if (n_ > 0 && c_ < c_min_) {
         phase_ = Phase::cruise;
         stop_steps_ = stopping_steps(n_);
+        if (batch_below_q4_) c_ = c_min_;  // a run may have overshot the limit
       }
     } else if (phase_ == Phase::cruise && remaining_ <= stop_steps_) {
       enter_decel();
@@ -158,7 +173,60 @@ class SpeedRamp {
     rest_ = num % den;
   }
 
+  // sqrt(x * 2^s) rounded down, for even s <= 16, in 32-bit arithmetic: the
+  // scale drops by whole bits when x << s would not fit, which costs nothing
+  // in relative precision because x is then large.
+  static uint32_t scaled_root(uint32_t x, uint8_t s) {
+    uint8_t t = s;
+    while (t && x >= (uint32_t(1) << (32 - t))) t = uint8_t(t - 2);
+    return uint32_t(isqrt32(x << t)) << ((s - t) / 2);
+  }
+
+  // Along the recurrence c_n sqrt(2n + 1) stays constant while accelerating
+  // (prod (4i-1)/(4i+1) ~ sqrt((2n+1) / (2n+2k+1))), and c_q sqrt(2q - 1)
+  // while decelerating with q steps left. The first batched run of a phase
+  // takes that constant from the recurrence's current delay; every later
+  // delay of the phase is constant / root, so rounding errors never add up
+  // from run to run. (Measured against the product: within 2e-5 for n >= 30.)
+  void take_invariant(uint32_t c, uint32_t x) {
+    root_scale_ = 16;
+    uint64_t k = uint64_t(c) * scaled_root(x, root_scale_);
+    while (k >> 32) {
+      root_scale_ = uint8_t(root_scale_ - 2);
+      k = uint64_t(c) * scaled_root(x, root_scale_);
+    }
+    invariant_ = uint32_t(k);
+  }
+  uint32_t delay_at(uint32_t x) const {
+    const uint32_t r = scaled_root(x, root_scale_);
+    return (invariant_ + r / 2) / r;
+  }
+
+  // Steps in a batched ramp run starting here (1 = no batching).
+  uint32_t batch_size() const {
+    if (batch_below_q4_ == 0 || c_ >= batch_below_q4_) return 1;
+    if (phase_ == Phase::accel) {
+      // Stay clear of the point where deceleration must begin: k more steps
+      // add k * accel / decel to the stopping distance.
+      const uint32_t stop = stopping_steps(n_);
+      if (remaining_ <= stop) return 1;
+      const uint32_t spare = remaining_ - stop;
+      const uint32_t k = cfg_.accel == cfg_.decel
+                             ? spare / 2
+                             : uint32_t(uint64_t(spare) * cfg_.decel / (uint64_t(cfg_.accel) + cfg_.decel));
+      const uint32_t root = isqrt32(n_);
+      return k < root ? (k ? k : 1) : root;
+    }
+    const uint32_t root = isqrt32(remaining_);
+    return root < remaining_ ? root : remaining_;
+  }
+
   StepRun take(uint16_t max_count) {
+    if (split_.count) {  // second half of a batched run
+      const StepRun run = split_;
+      split_.count = 0;
+      return run;
+    }
     if (remaining_ == 0) return StepRun{0, 0};
     prepare_step();
     StepRun run{round_q4(c_), 1};
@@ -166,10 +234,42 @@ class SpeedRamp {
       uint32_t span = remaining_ - stop_steps_;
       if (span > max_count) span = max_count;
       run.count = uint16_t(span);
+    } else if (max_count > 1) {
+      uint32_t k = batch_size();
+      if (k > max_count) k = max_count;
+      if (k > 1) return take_batch(uint16_t(k));
     }
     remaining_ -= run.count;
     if (phase_ == Phase::accel) advance_accel();
     return run;
+  }
+
+  // k ramp steps at the mean of the first and last delay; leaves the state as
+  // if the k steps had been taken one by one. Whole ticks cannot hold the
+  // mean, so the run is split in two, at floor and floor + 1 ticks, whose
+  // total is the mean times k to the nearest tick.
+  StepRun take_batch(uint16_t k) {
+    const uint32_t first = c_;
+    uint32_t last;
+    if (phase_ == Phase::accel) {
+      if (!invariant_valid_) take_invariant(first, 2 * n_ + 1);
+      n_ += k;
+      last = delay_at(2 * n_ - 1);
+      c_ = delay_at(2 * n_ + 1);
+    } else {
+      // The k-th delay from here is that of q = r - k + 1 steps left.
+      if (!invariant_valid_) take_invariant(first, 2 * remaining_ - 1);
+      last = delay_at(2 * (remaining_ - k) + 1);
+      c_ = last;
+    }
+    invariant_valid_ = true;
+    rest_ = 0;
+    remaining_ -= k;
+    const uint32_t total = uint32_t((uint64_t(first + last) * k + 16) >> 5);  // ticks
+    const uint32_t base = total / k;
+    const uint16_t longer = uint16_t(total - base * k);
+    split_ = StepRun{base + 1, longer};
+    return StepRun{base, uint16_t(k - longer)};
   }
 
   RampConfig cfg_{};
@@ -179,6 +279,11 @@ class SpeedRamp {
   uint32_t rest_ = 0;    // remainder carried by the recurrence
   uint32_t n_ = 0;       // accelerating steps taken
   uint32_t stop_steps_ = 0;
+  uint32_t batch_below_q4_ = 0;
+  StepRun split_{0, 0};  // the floor + 1 half of a batched run, still to give
+  uint32_t invariant_ = 0;   // c sqrt(2n + 1), or c sqrt(2q - 1) decelerating
+  uint8_t root_scale_ = 16;  // the invariant's root carries 2^(root_scale_/2)
+  bool invariant_valid_ = false;
   Phase phase_ = Phase::accel;
 };
 

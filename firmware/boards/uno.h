@@ -7,12 +7,16 @@
 // 200-step motor on an 8 mm-lead screw: 25 full steps per mm. Axis U is a
 // 28BYJ-48 on a ULN2003 board at A0..A3 (PC0..PC3), counted as 2048 full steps
 // per output turn of a 500 mm circumference pulley: 4096 steps per metre.
+// Axis Z is an external step/dir driver on the shield's servo header: STEP on
+// D9 (OC1A, timed by the step timer's hardware), DIR on D10, ENABLE on A4
+// (active low); 400 steps per mm (16 microsteps, 8 mm lead).
 #pragma once
 #include "../../hal/avr/gpio.h"
 #include "../../hal/avr/latch595.h"
 #include "../../hal/avr/pwm8.h"
 #include "../drivers/axis_set.h"
 #include "../drivers/shield_stepper.h"
+#include "../drivers/timer_step_axis.h"
 #include "../drivers/unipolar_axis.h"
 
 namespace board {
@@ -23,7 +27,8 @@ using Latch = hal::Latch595<Pin<'B', 4>, Pin<'D', 4>, Pin<'B', 0>, Pin<'D', 7>>;
 // stepper 2 M3 = D6 (OC0A), M4 = D5 (OC0B). Timer0 is free: no millis() here.
 using Axes = AxisSet<ShieldStepper<'X', 1, Latch, hal::Pwm8<2, 'A'>, hal::Pwm8<2, 'B'>, 25000>,
                      ShieldStepper<'Y', 2, Latch, hal::Pwm8<0, 'A'>, hal::Pwm8<0, 'B'>, 25000>,
-                     UnipolarAxis<'U', Pin<'C', 0>, Pin<'C', 1>, Pin<'C', 2>, Pin<'C', 3>, 4096>>;
+                     UnipolarAxis<'U', Pin<'C', 0>, Pin<'C', 1>, Pin<'C', 2>, Pin<'C', 3>, 4096>,
+                     TimerStepAxis<'Z', Pin<'B', 2>, Pin<'C', 4>, true, 400000>>;
 
 constexpr uint32_t kBaud = 115200;
 constexpr uint32_t kStepTimerHz = F_CPU;

@@ -67,10 +67,12 @@ bool execute(const am::Command& c) {
         case am::RampError::zero_accel: error(PSTR("acceleration must be above 0")); return true;
         default: break;
       }
-      if (cfg.max_rate > board::kMaxStepRate) {
-        cfg.max_rate = board::kMaxStepRate;
+      const uint32_t own_limit = board::Axes::max_rate_at(uint8_t(axis));
+      const uint32_t limit = own_limit ? own_limit : board::kMaxStepRate;
+      if (cfg.max_rate > limit) {
+        cfg.max_rate = limit;
         hal::uart::write_P(PSTR("warning: F clamped to "));
-        hal::uart::write_u32(board::kMaxStepRate);
+        hal::uart::write_u32(limit);
         hal::uart::write('\n');
       }
       if (c.steps != 0) planner::start(uint8_t(axis), c.steps, cfg);

@@ -11,12 +11,35 @@
 
 #include "../../core/board_descriptor.h"
 
+// Whether an axis type's step edges come from the step timer's output-compare
+// pin (it declares `static constexpr bool timer_pulse = true`).
+template <typename A, typename = void>
+struct TimerPulsed {
+  static constexpr bool value = false;
+};
+template <typename A>
+struct TimerPulsed<A, decltype(void(A::timer_pulse))> {
+  static constexpr bool value = A::timer_pulse;
+};
+
+// An axis type's own step-rate limit (`static constexpr uint32_t max_rate`),
+// or 0: the board's kMaxStepRate applies.
+template <typename A, typename = void>
+struct OwnMaxRate {
+  static constexpr uint32_t value = 0;
+};
+template <typename A>
+struct OwnMaxRate<A, decltype(void(A::max_rate))> {
+  static constexpr uint32_t value = A::max_rate;
+};
+
 template <typename... Axes>
 struct AxisSet;
 
 template <>
 struct AxisSet<> {
   static constexpr uint8_t count = 0;
+  static constexpr uint8_t timer_mask = 0;
   static void init() {}
   static void release() {}
   static void energise(uint8_t, uint8_t) {}
@@ -25,12 +48,16 @@ struct AxisSet<> {
   static void pulse_end(uint8_t, uint8_t) {}
   static int8_t index_of(char, uint8_t = 0) { return -1; }
   static char name_at(uint8_t) { return '?'; }
+  static uint32_t max_rate_at(uint8_t) { return 0; }
 };
 
 template <typename First, typename... Rest>
 struct AxisSet<First, Rest...> {
   using Tail = AxisSet<Rest...>;
   static constexpr uint8_t count = 1 + sizeof...(Rest);
+  // Mask bits of the axes pulsed by the timer hardware.
+  static constexpr uint8_t timer_mask = uint8_t((TimerPulsed<First>::value ? 1 : 0) | (Tail::timer_mask << 1));
+  static_assert((timer_mask & (timer_mask - 1)) == 0, "one OC1A: at most one timer-pulsed axis");
 
   static void init() { First::init(); Tail::init(); }
   static void release() { First::release(); Tail::release(); }
@@ -57,4 +84,7 @@ struct AxisSet<First, Rest...> {
     return First::name == name ? int8_t(index) : Tail::index_of(name, uint8_t(index + 1));
   }
   static char name_at(uint8_t index) { return index == 0 ? First::name : Tail::name_at(uint8_t(index - 1)); }
+  static uint32_t max_rate_at(uint8_t index) {
+    return index == 0 ? OwnMaxRate<First>::value : Tail::max_rate_at(uint8_t(index - 1));
+  }
 };

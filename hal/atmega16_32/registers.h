@@ -42,3 +42,10 @@ inline void hal_disable_jtag() {
   MCUCSR = _BV(JTD);
   MCUCSR = _BV(JTD);
 }
+
+// Timer1 output compare A pin and its force-output-compare strobe.
+#define HAL_OC1A_PORT 'D'
+#define HAL_OC1A_BIT 5
+// FOC1A sits in TCCR1A beside the COM bits: the strobe rewrites "clear".
+#define HAL_FORCE_OC1A_REG TCCR1A
+#define HAL_FORCE_OC1A_VALUE (_BV(COM1A1) | _BV(FOC1A))

@@ -35,3 +35,10 @@ constexpr uint8_t pin_io_address(char port) {
 #define HAL_TIMER1_FLAGS TIFR1
 
 inline void hal_disable_jtag() {}
+
+// Timer1 output compare A pin and its force-output-compare strobe.
+#define HAL_OC1A_PORT 'B'
+#define HAL_OC1A_BIT 1
+// TCCR1C holds nothing but the force bits.
+#define HAL_FORCE_OC1A_REG TCCR1C
+#define HAL_FORCE_OC1A_VALUE _BV(FOC1A)

@@ -14,8 +14,11 @@
 namespace hal {
 namespace step_timer {
 
+constexpr uint8_t kOc1aSet = _BV(COM1A1) | _BV(COM1A0);
+constexpr uint8_t kOc1aClear = _BV(COM1A1);
+
 inline void init() {
-  TCCR1A = 0;                  // no output-compare pins, WGM11:10 = 0
+  TCCR1A = kOc1aClear;         // OC1A low until armed; WGM11:10 = 0
   TCCR1B = _BV(WGM12);         // CTC, clock stopped
   HAL_TIMER1_MASK |= _BV(OCIE1A);
 }
@@ -32,6 +35,19 @@ inline void start(uint16_t compare) {
 inline void stop() { TCCR1B = _BV(WGM12); }
 
 inline void set_compare(uint16_t compare) { OCR1A = compare; }
+
+// Hardware step pulses on OC1A. The rising edge is made by the compare match
+// itself, so it lands on the exact timer tick whatever the interrupt latency;
+// the interrupt only ends the pulse (FOC with "clear" forces the pin low
+// without a match) and arms the next one ("set on match"). WGM11:10 are 0 in
+// CTC mode, so TCCR1A holds nothing but these bits.
+inline void arm_pulse() { TCCR1A = kOc1aSet; }
+inline void end_pulse() {
+  TCCR1A = kOc1aClear;
+  HAL_FORCE_OC1A_REG = HAL_FORCE_OC1A_VALUE;
+}
+// Leaves OC1A driven low by "clear on match" (a match then changes nothing).
+inline void disarm_pulse() { TCCR1A = kOc1aClear; }
 
 }  // namespace step_timer
 }  // namespace hal

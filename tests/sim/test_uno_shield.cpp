@@ -50,7 +50,7 @@ TEST(UnoShield, BothSteppersShareTheLatchWithoutDisturbingEachOther) {
   EXPECT_DOUBLE_EQ(m->axis('X')->steps(), 3.0);
   EXPECT_DOUBLE_EQ(m->axis('Y')->steps(), -2.0);
   const auto& got = m->serial().received();
-  EXPECT_NE(std::find(got.begin(), got.end(), "pos X:3 Y:-2 U:0"), got.end());
+  EXPECT_NE(std::find(got.begin(), got.end(), "pos X:3 Y:-2 U:0 Z:0"), got.end());
 }
 
 TEST(UnoShield, ReleaseTurnsEveryCoilOff) {
