@@ -18,10 +18,12 @@ struct TimerStepAxis {
   static constexpr char name = Name;
   static constexpr bool timer_pulse = true;
   // The pulse must have ended before the next match raises STEP again. It
-  // ends about 26 cycles after its match, later by the longest interrupt
-  // that can hold the step vector off (the UART's, about 76 cycles with entry
-  // and RETI): 128 cycles between steps leave margin. 125 kHz at 16 MHz.
-  static constexpr uint32_t max_rate = F_CPU / 128;
+  // ends about 26 cycles after its match, later by whatever holds the step
+  // vector off: a UART handler's prologue (they nest, about 25 cycles) or a
+  // shield latch write from the main loop (interrupts off, about 70 cycles).
+  // 100 cycles between steps leave the pulse low for at least 4: 160 kHz at
+  // 16 MHz, checked by avrmotion-bench.
+  static constexpr uint32_t max_rate = F_CPU / 100;
 
   static void init() {
     Step::low();

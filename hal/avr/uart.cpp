@@ -87,10 +87,16 @@ void flush() {
 }  // namespace uart
 }  // namespace hal
 
+// Both UART handlers re-enable interrupts as soon as their own source is
+// quiet (the byte read, or the transmit interrupt masked), so the step
+// interrupt waits for at most their prologue, about 25 cycles, and never for
+// their whole body: a hardware-timed step pulse must end before the next
+// compare match, 107 cycles later at 150 kHz.
 ISR(HAL_UART_RX_VECT) {
   using namespace hal::uart;
   const uint8_t status = HAL_UCSRA;
-  const uint8_t c = HAL_UDR;
+  const uint8_t c = HAL_UDR;  // clears RXC: no re-entry until the next byte
+  sei();
   if (status & (_BV(HAL_DOR) | _BV(HAL_FE))) rx_lost = true;
   const uint8_t head = rx_head;
   if (uint8_t(head - rx_tail) == kRxSize) {
@@ -103,11 +109,12 @@ ISR(HAL_UART_RX_VECT) {
 
 ISR(HAL_UART_UDRE_VECT) {
   using namespace hal::uart;
+  HAL_UCSRB &= uint8_t(~_BV(HAL_UDRIE));  // UDRE stays set: mask it, then nest
+  sei();
   const uint8_t tail = tx_tail;
-  if (tail == tx_head) {
-    HAL_UCSRB &= uint8_t(~_BV(HAL_UDRIE));
-    return;
-  }
+  if (tail == tx_head) return;
   HAL_UDR = tx_buf[tail % kTxSize];
   tx_tail = uint8_t(tail + 1);
+  cli();
+  HAL_UCSRB |= _BV(HAL_UDRIE);
 }

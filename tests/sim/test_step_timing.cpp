@@ -10,7 +10,7 @@
 namespace {
 
 constexpr int64_t kJitterBound = 12;    // cycles, peak to peak, software pulses
-constexpr int64_t kSimStampSpread = 3;  // longest instruction - 1: see below
+constexpr int64_t kTimerPulseSpread = 0;  // hardware edges: exact
 
 std::vector<uint64_t> schedule(uint32_t steps, const am::RampConfig& cfg) {
   am::SpeedRamp ramp;
@@ -73,12 +73,12 @@ TEST(StepTiming, EightMegahertzImageRunsOnItsOwnClock) {
 
 TEST(StepTiming, TimerPulsedAxisIsExactToTheCycle) {
   // Uno axis Z: the compare match itself raises STEP (OC1A), so interrupt
-  // latency cannot move an edge. simavr runs timer events between
-  // instructions and stamps the pin change at that instruction boundary, up
-  // to 3 cycles after the match: that, and only that, is the spread allowed.
-  expect_schedule("uno", 'Z', 400, am::RampConfig{16000000, 4000, 8000, 8000}, kSimStampSpread);
+  // latency cannot move an edge: every pulse on its tick, zero spread. (Needs
+  // simavr patch J: stock simavr stamps timer events at the next instruction
+  // boundary, 0..3 cycles late.)
+  expect_schedule("uno", 'Z', 400, am::RampConfig{16000000, 4000, 8000, 8000}, kTimerPulseSpread);
   // A fast move whose ramp is planned in sqrt(n) runs (speed_ramp.h).
-  expect_schedule("uno", 'Z', 20000, am::RampConfig{16000000, 60000, 200000, 200000}, kSimStampSpread);
+  expect_schedule("uno", 'Z', 20000, am::RampConfig{16000000, 60000, 200000, 200000}, kTimerPulseSpread);
 }
 
 TEST(StepTiming, TimerPulseWidthMeetsDriverMinimum) {
