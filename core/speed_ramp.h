@@ -247,7 +247,9 @@ class SpeedRamp {
   // k ramp steps at the mean of the first and last delay; leaves the state as
   // if the k steps had been taken one by one. Whole ticks cannot hold the
   // mean, so the run is split in two, at floor and floor + 1 ticks, whose
-  // total is the mean times k to the nearest tick.
+  // total is the mean times k to the nearest tick; halves shorter than
+  // kMinSplit steps are not split off.
+  static constexpr uint16_t kMinSplit = 8;
   StepRun take_batch(uint16_t k) {
     const uint32_t first = c_;
     uint32_t last;
@@ -268,6 +270,12 @@ class SpeedRamp {
     const uint32_t total = uint32_t((uint64_t(first + last) * k + 16) >> 5);  // ticks
     const uint32_t base = total / k;
     const uint16_t longer = uint16_t(total - base * k);
+    if (longer < kMinSplit || k - longer < kMinSplit) {
+      // A short half would be a short segment, which the step engine must
+      // switch to and away from within a few steps: round instead (at most
+      // kMinSplit / 2 ticks off over the whole run).
+      return StepRun{longer * 2 < k ? base : base + 1, k};
+    }
     split_ = StepRun{base + 1, longer};
     return StepRun{base, uint16_t(k - longer)};
   }

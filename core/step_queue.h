@@ -13,6 +13,7 @@
 //   The interrupt therefore never divides or compares 32-bit numbers; all of
 //   that happens in make().
 #pragma once
+#include <stddef.h>
 #include <stdint.h>
 
 namespace am {
@@ -69,6 +70,13 @@ class StepQueue {
   void pop() { tail_ = uint8_t(tail_ + 1); }
 
   void clear() { tail_ = head_; }
+
+  // Layout, for a consumer written in assembly (the AVR step engine's fast
+  // path reads the ring directly). The class is standard-layout, so offsetof
+  // is well defined.
+  static constexpr size_t slots_offset() { return offsetof(StepQueue, slots_); }
+  static constexpr size_t head_offset() { return offsetof(StepQueue, head_); }
+  static constexpr size_t tail_offset() { return offsetof(StepQueue, tail_); }
 
  private:
   StepSegment slots_[Size];
