@@ -5,10 +5,13 @@
 
 namespace am {
 
-// floor(sqrt(x))
-inline uint32_t isqrt64(uint64_t x) {
-  uint64_t result = 0;
-  uint64_t bit = uint64_t(1) << 62;
+// floor(sqrt(x)), bit by bit: shifts, compares and subtractions only, in
+// the width of T (the narrowest that holds x is the cheapest on the AVR,
+// where 64-bit shifts and compares are library calls).
+template <typename T>
+inline T isqrt_bitwise(T x) {
+  T result = 0;
+  T bit = T(1) << (8 * sizeof(T) - 2);
   while (bit > x) bit >>= 2;
   while (bit != 0) {
     if (x >= result + bit) {
@@ -19,25 +22,10 @@ inline uint32_t isqrt64(uint64_t x) {
     }
     bit >>= 2;
   }
-  return uint32_t(result);
+  return result;
 }
 
-// floor(sqrt(x)) in 32-bit arithmetic: four times cheaper than isqrt64 on
-// the AVR, where 64-bit shifts and compares are library calls.
-inline uint16_t isqrt32(uint32_t x) {
-  uint32_t result = 0;
-  uint32_t bit = uint32_t(1) << 30;
-  while (bit > x) bit >>= 2;
-  while (bit != 0) {
-    if (x >= result + bit) {
-      x -= result + bit;
-      result = (result >> 1) + bit;
-    } else {
-      result >>= 1;
-    }
-    bit >>= 2;
-  }
-  return uint16_t(result);
-}
+inline uint32_t isqrt64(uint64_t x) { return uint32_t(isqrt_bitwise<uint64_t>(x)); }
+inline uint16_t isqrt32(uint32_t x) { return uint16_t(isqrt_bitwise<uint32_t>(x)); }
 
 }  // namespace am

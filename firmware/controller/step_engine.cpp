@@ -88,6 +88,19 @@ inline void stop_engine() {
   running = false;
 }
 
+// The current segment is done: on to the next one, programming its first
+// period before anything else, or stop if there is none.
+inline void next_segment() {
+  step_queue.pop();
+  if (step_queue.empty()) {
+    stop_engine();
+    return;
+  }
+  const am::StepSegment& s = step_queue.front();
+  hal::step_timer::set_compare(first_period(s));
+  load_front(s);
+}
+
 // Arms the hardware pulse when the period just programmed ends in a step of
 // the timer-pulsed axis. Compiles to nothing on boards without one.
 inline void arm_if_step_period() {
@@ -248,17 +261,7 @@ ISR(TIMER1_COMPA_vect, ISR_NAKED) {
 // compare matches again, about 100 cycles away at 150 kHz. No software pulses
 // and no calls here, so the prologue saves few registers.
 extern "C" void __vector_step_switch() __attribute__((signal, used, externally_visible));
-void __vector_step_switch() {
-  using namespace engine;
-  step_queue.pop();
-  if (step_queue.empty()) {
-    stop_engine();
-    return;
-  }
-  const am::StepSegment& s = step_queue.front();
-  hal::step_timer::set_compare(first_period(s));
-  load_front(s);
-}
+void __vector_step_switch() { engine::next_segment(); }
 
 // The general handler: one more period of a long interval, or a step of any
 // axis. A timer-pulsed axis has had its whole pulse already (the match raised
@@ -289,12 +292,5 @@ void __vector_step_slow() {
   }
   __builtin_avr_delay_cycles(board::kStepPulsePadCycles);
   board::Axes::pulse_end(axes);
-  step_queue.pop();
-  if (step_queue.empty()) {
-    stop_engine();
-    return;
-  }
-  const am::StepSegment& s = step_queue.front();
-  hal::step_timer::set_compare(first_period(s));
-  load_front(s);
+  next_segment();
 }
