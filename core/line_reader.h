@@ -5,7 +5,7 @@
 //   text() (without CR/LF, NUL-terminated), Line::too_long when a line ended
 //   that did not fit (its bytes were dropped, the caller reports an error), and
 //   Line::none otherwise. CR, LF and CRLF all end a line; empty lines are
-//   ignored. After ready/too_long the next feed() starts a new line.
+//   ignored. After ready/too_long the next feed() starts the following line.
 #pragma once
 #include <stdint.h>
 

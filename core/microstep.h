@@ -14,7 +14,7 @@
 //   bit2 = A-, bit3 = B-), so index M*j/2 is half-step state j of
 //   half_step_pattern() with the current fully in the lit coil(s).
 //
-//   step() moves one microstep and returns the new output; hold() energises the
+//   step() moves one microstep and returns the output it lands on; hold() energises the
 //   current index; release() turns both windings off (duty 0, no coils) and
 //   keeps the index so the next step continues without a jump.
 //
@@ -133,7 +133,7 @@ class Microstepper {
 //     wave (0): s 64, o 0    two-phase (1): s 64, o 32    half (2): s 32, o 0
 //     16 / 32 / 64 microsteps: s 4 / 2 / 1, o 0
 //   step() moves to the next grid point of the current mode strictly ahead (or
-//   behind), so after a mode change on an angle that is off the new grid the
+//   behind), so after a mode change on an angle that is off the grid of the mode now set the
 //   first step is a partial one and the rotor never jumps. set_mode() keeps
 //   the angle. snap_down() (the first energise after power-up, when the rotor
 //   position is unknown) moves to the grid point at or behind the angle: from

@@ -45,7 +45,7 @@ class PhaseSequencer {
   StepMode mode() const { return mode_; }
   void set_mode(StepMode mode) { mode_ = mode; }
 
-  // Advances one step of the current mode and returns the new coil pattern.
+  // Advances one step of the current mode and returns the coil pattern it lands on.
   uint8_t step(bool forward) {
     if (mode_ == StepMode::half) {
       index_ = uint8_t((index_ + (forward ? 1 : 7)) & 7);
