@@ -57,6 +57,10 @@ void write_report(std::ostream& out, Machine& m, RunEnd end) {
   const auto errors = serial.errors();
   for (size_t i = 0; i < errors.size(); ++i) out << (i ? ", " : "") << quoted(errors[i]);
   out << "],\n";
+  out << "  \"messages\": [";
+  const auto messages = serial.messages();
+  for (size_t i = 0; i < messages.size(); ++i) out << (i ? ", " : "") << quoted(messages[i]);
+  out << "],\n";
   out << "  \"axes\": {";
   bool first = true;
   for (const AxisTrace& a : m.axes()) {

@@ -39,6 +39,15 @@ std::vector<std::string> SerialHost::errors() const {
   return out;
 }
 
+std::vector<std::string> SerialHost::messages() const {
+  std::vector<std::string> out;
+  for (size_t i = 1; i < received_.size(); ++i) {
+    const std::string& l = received_[i];
+    if (l != "ok" && l.rfind("error", 0) != 0) out.push_back(l);
+  }
+  return out;
+}
+
 void SerialHost::on_output(avr_irq_t*, uint32_t value, void* self) {
   auto* host = static_cast<SerialHost*>(self);
   const char c = char(value);

@@ -38,6 +38,8 @@ class SerialHost {
   size_t lines_sent() const { return lines_sent_; }
   size_t lines_ok() const;
   std::vector<std::string> errors() const;
+  // Lines that are neither the banner nor an answer (pos, warnings).
+  std::vector<std::string> messages() const;
 
  private:
   static void on_output(avr_irq_t* irq, uint32_t value, void* self);

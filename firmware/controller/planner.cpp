@@ -23,8 +23,9 @@ void start(uint8_t axis, int32_t steps, const am::RampConfig& config) {
   ramp.batch_below(F_CPU / 4000);
   axis_mask = uint8_t(1u << axis);
   dir_mask = forward ? axis_mask : 0;
-  positions[axis] += steps;
+  const bool idle = !engine::busy();
   board::Axes::energise(axis_mask);
+  positions[axis] += board::Axes::units_for(axis, steps, idle);
   pump();
 }
 

@@ -5,8 +5,10 @@
 //   ramp configuration; pump() is called from the main loop and pushes as many
 //   segments as the engine's queue accepts, returning at once when it is full.
 //   idle() is true when every segment of the move has been queued.
-//   Positions are counted here, in steps, when a move is accepted: what the
-//   protocol reports once the engine is idle is where the motors are.
+//   Positions are counted here when a move is accepted, in each axis's
+//   position units (steps; 1/64 full step for coil-driven axes, so moves in
+//   different excitation modes add up): what the protocol reports once the
+//   engine is idle is where the motors are.
 #pragma once
 #include <stdint.h>
 

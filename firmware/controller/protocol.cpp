@@ -48,6 +48,29 @@ const char* parse_error_text(am::ParseError e) {
 
 bool motion_done() { return planner::idle() && !engine::busy(); }
 
+// A position in steps, or for an axis counted in fractions of a full step,
+// in full steps with the decimals needed (1/64 -> 0.015625): "450", "-3.25".
+void write_position(int32_t units, uint8_t per_full_step) {
+  if (per_full_step == 1) {
+    hal::uart::write_i32(units);
+    return;
+  }
+  if (units < 0) hal::uart::write('-');
+  const uint32_t magnitude = units < 0 ? uint32_t(-(units + 1)) + 1u : uint32_t(units);
+  hal::uart::write_u32(magnitude / per_full_step);
+  uint32_t millionths = (magnitude % per_full_step) * 1000000ul / per_full_step;
+  if (millionths == 0) return;
+  hal::uart::write('.');
+  for (uint32_t digit = 100000; millionths != 0; digit /= 10) {
+    hal::uart::write(uint8_t('0' + millionths / digit));
+    millionths %= digit;
+  }
+}
+
+// The longest move: positions are kept in 1/64 full step for coil axes,
+// and 2^24 * 64 still fits the 32-bit counters.
+constexpr int32_t kMaxMoveSteps = 16777216;
+
 // Tries to run the waiting command; false while it must keep waiting.
 bool execute(const am::Command& c) {
   switch (c.kind) {
@@ -75,6 +98,10 @@ bool execute(const am::Command& c) {
         hal::uart::write_u32(limit);
         hal::uart::write('\n');
       }
+      if (c.steps > kMaxMoveSteps || c.steps < -kMaxMoveSteps) {
+        error(PSTR("move too long (max 16777216 steps)"));
+        return true;
+      }
       if (c.steps != 0) planner::start(uint8_t(axis), c.steps, cfg);
       ok();
       return true;
@@ -86,7 +113,7 @@ bool execute(const am::Command& c) {
         hal::uart::write(' ');
         hal::uart::write(uint8_t(board::Axes::name_at(i)));
         hal::uart::write(':');
-        hal::uart::write_i32(planner::position(i));
+        write_position(planner::position(i), board::Axes::units_per_full_step_at(i));
       }
       hal::uart::write('\n');
       ok();

@@ -33,6 +33,22 @@ struct OwnMaxRate<A, decltype(void(A::max_rate))> {
   static constexpr uint32_t value = A::max_rate;
 };
 
+// Position bookkeeping: an axis type may count its position in finer units
+// than its steps (`static int32_t units_for(int32_t steps, bool idle)` and
+// `static constexpr uint8_t units_per_full_step`: the coil-driven axes count
+// 1/64 full steps, so moves in different excitation modes add up); by
+// default one step is one unit.
+template <typename A, typename = void>
+struct OwnUnits {
+  static int32_t units_for(int32_t steps, bool) { return steps; }
+  static constexpr uint8_t per_full_step = 1;
+};
+template <typename A>
+struct OwnUnits<A, decltype(void(A::units_per_full_step))> {
+  static int32_t units_for(int32_t steps, bool idle) { return A::units_for(steps, idle); }
+  static constexpr uint8_t per_full_step = A::units_per_full_step;
+};
+
 template <typename... Axes>
 struct AxisSet;
 
@@ -49,6 +65,8 @@ struct AxisSet<> {
   static int8_t index_of(char, uint8_t = 0) { return -1; }
   static char name_at(uint8_t) { return '?'; }
   static uint32_t max_rate_at(uint8_t) { return 0; }
+  static int32_t units_for(uint8_t, int32_t, bool) { return 0; }
+  static uint8_t units_per_full_step_at(uint8_t) { return 1; }
 };
 
 template <typename First, typename... Rest>
@@ -86,5 +104,12 @@ struct AxisSet<First, Rest...> {
   static char name_at(uint8_t index) { return index == 0 ? First::name : Tail::name_at(uint8_t(index - 1)); }
   static uint32_t max_rate_at(uint8_t index) {
     return index == 0 ? OwnMaxRate<First>::value : Tail::max_rate_at(uint8_t(index - 1));
+  }
+  // Position units moved by `steps` steps of axis `index` (see OwnUnits).
+  static int32_t units_for(uint8_t index, int32_t steps, bool idle) {
+    return index == 0 ? OwnUnits<First>::units_for(steps, idle) : Tail::units_for(uint8_t(index - 1), steps, idle);
+  }
+  static uint8_t units_per_full_step_at(uint8_t index) {
+    return index == 0 ? OwnUnits<First>::per_full_step : Tail::units_per_full_step_at(uint8_t(index - 1));
   }
 };

@@ -91,6 +91,27 @@ struct ShieldStepper {
     write_latch(0);
     SREG = sreg;
   }
+  // Rotor travel of a move, in 1/64 full step: a grid step of the current
+  // mode per step, except that the first step after a mode change that left
+  // the angle off the new grid only reaches the next grid point. That can
+  // only be the case when the axis is idle (modes change only then), and
+  // then the cursor is exactly where the move starts.
+  static constexpr uint8_t units_per_full_step = am::ExcitationCursor::units_per_full_step;
+  static int32_t units_for(int32_t steps, bool idle) {
+    if (steps == 0) return 0;
+    const bool forward = steps > 0;
+    const uint32_t n = forward ? uint32_t(steps) : uint32_t(-(steps + 1)) + 1u;
+    const uint8_t grid = am::excitation::grid_step(cursor.mode());
+    uint32_t first = grid;
+    if (idle) {
+      am::ExcitationCursor probe = cursor;
+      const uint8_t from = probe.angle();
+      const uint8_t to = probe.step(forward);
+      first = uint8_t(forward ? to - from : from - to);
+    }
+    const int32_t units = int32_t(first + (n - 1) * grid);
+    return forward ? units : -units;
+  }
   // Called only while the axis is idle (the protocol waits for motion to end).
   static bool set_mode(uint8_t mode) {
     if (!cursor.set_mode(mode)) return false;

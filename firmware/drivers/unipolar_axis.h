@@ -31,6 +31,14 @@ struct UnipolarAxis {
     sequencer.release();
     show(am::coil::off);
   }
+  // Position in 1/64 full step, like the shield's axes: a full step in wave
+  // and two-phase drive, half of one in half-step drive. (energise() has
+  // already put the rotor on a state of the current mode when a move starts,
+  // so every step of the move is whole.)
+  static constexpr uint8_t units_per_full_step = 64;
+  static int32_t units_for(int32_t steps, bool) {
+    return steps * (sequencer.mode() == am::StepMode::half ? 32 : 64);
+  }
   static void set_direction(bool) {}
   static void pulse_begin(bool forward) { show(sequencer.step(forward)); }
   static void pulse_end() {}

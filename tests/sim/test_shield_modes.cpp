@@ -179,9 +179,13 @@ void check_micro_mode(const Stepper& s, int n) {
   }
   // The coil decoder sees the quadrant only: 4 full steps and 3 microsteps
   // read as 4.5 steps (docs/modes.md), back to 0 at the start.
-  // POS counts commanded steps: microsteps in a microstep mode.
-  const std::string pos = "pos X:" + std::to_string(s.axis == 'X' ? steps : 0) +
-                          " Y:" + std::to_string(s.axis == 'Y' ? steps : 0) + " ";
+  // POS reports full steps, exactly: 4 + 3/n of them.
+  char full[32];
+  std::snprintf(full, sizeof full, "%.6f", 4.0 + 3.0 / n);
+  std::string exact = full;
+  exact.erase(exact.find_last_not_of('0') + 1);
+  const std::string pos = "pos X:" + (s.axis == 'X' ? exact : std::string("0")) +
+                          " Y:" + (s.axis == 'Y' ? exact : std::string("0")) + " ";
   const auto& got = r.m->serial().received();
   EXPECT_TRUE(std::any_of(got.begin(), got.end(), [&](const std::string& l) { return l.rfind(pos, 0) == 0; }))
       << pos;

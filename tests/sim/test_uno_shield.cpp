@@ -58,3 +58,16 @@ TEST(UnoShield, ReleaseTurnsEveryCoilOff) {
   EXPECT_EQ(m->latch()->outputs(), 0);
   EXPECT_EQ(m->serial().lines_ok(), 3u);
 }
+
+TEST(UnoShield, PositionStaysExactAcrossModeChanges) {
+  // One two-phase step (B-A+ held, then A+B+: 1 full step), three 1/16
+  // microsteps (1.1875), then back to two-phase from that off-grid angle:
+  // the first step only reaches the next two-phase state, B+A-, two full
+  // steps from where the rotor was first held.
+  auto m = simtest::run("uno", {"MOVE X1", "MODE X16", "MOVE X3", "POS", "MODE X1", "MOVE X1", "POS"});
+  const auto& got = m->serial().received();
+  EXPECT_NE(std::find(got.begin(), got.end(), "pos X:1.1875 Y:0 U:0 Z:0"), got.end());
+  EXPECT_NE(std::find(got.begin(), got.end(), "pos X:2 Y:0 U:0 Z:0"), got.end());
+  EXPECT_DOUBLE_EQ(m->axis('X')->steps(), 2.0);  // the coil decoder agrees
+  EXPECT_EQ(m->latch()->outputs() & 0x1E, 0x0A);  // B+A-
+}
