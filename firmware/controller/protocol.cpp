@@ -6,7 +6,7 @@
 #include "../../core/line_reader.h"
 #include "../../hal/avr/uart.h"
 #include "../board.h"
-#include "../drivers/shield_stepper.h"  // AxisModes: MODE on any board
+#include "../drivers/axis_modes.h"
 #include "planner.h"
 #include "step_engine.h"
 
