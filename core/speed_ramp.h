@@ -18,10 +18,13 @@
 //   remaining distance equals the stopping distance.
 //
 //   All arithmetic is integer so the AVR and the host produce identical
-//   intervals: c is kept in 1/16 tick (Q4) and the division remainder is carried
-//   from step to step, so truncation does not accumulate. A 64-bit square root
-//   runs once per move. Limits: tick rate <= 16 MHz, 1 <= accel, decel and
-//   1 <= max_rate <= tick rate.
+//   intervals: c is kept in 1/256 tick (Q8) and the division remainder is carried
+//   from step to step, so truncation does not accumulate (Q4 was not enough to
+//   give seed-000 Appendix 1 to the microsecond; Q8 gives every delay). A
+//   64-bit square root runs once per move. Limits: tick rate <= 16 MHz,
+//   1 <= max_rate <= tick rate, and accel, decel large enough that the first
+//   delay stays below 2^31 Q8 (8.1 M ticks: >= 4 steps/s^2 at 16 MHz,
+//   >= 1 at 8 MHz); check() reports out_of_range otherwise.
 #pragma once
 #include <stdint.h>
 #include "isqrt.h"
@@ -45,46 +48,53 @@ struct StepRun {
 
 class SpeedRamp {
  public:
+  // Longest delay the recurrence holds: 2 c + remainder must fit 32 bits,
+  // and remainders stay below 4n + 1 < 2^26.
+  static constexpr uint32_t kMaxDelayQ8 = (uint32_t(1) << 31) - (uint32_t(1) << 26);
+
   static RampError check(const RampConfig& cfg) {
     if (cfg.max_rate == 0) return RampError::zero_speed;
     if (cfg.accel == 0 || cfg.decel == 0) return RampError::zero_accel;
     if (cfg.max_rate > cfg.tick_hz) return RampError::rate_above_tick;
+    const uint32_t gentler = cfg.accel < cfg.decel ? cfg.accel : cfg.decel;
+    if (first_delay_q8(cfg.tick_hz, gentler) >= kMaxDelayQ8) return RampError::out_of_range;
     return RampError::none;
   }
 
-  // First delay of the ramp, in ticks (Q4): 0.676 f sqrt(2/a).
-  static uint32_t first_delay_q4(uint32_t tick_hz, uint32_t accel) {
-    // (0.676^2 * 2) = 0.913952; c0^2 = 0.913952 f^2 / a; Q4 squares to 2^8.
+  // First delay of the ramp, in ticks (Q8): 0.676 f sqrt(2/a).
+  static uint32_t first_delay_q8(uint32_t tick_hz, uint32_t accel) {
+    // (0.676^2 * 2) = 0.913952; c0^2 = 0.913952 f^2 / a; Q8 squares to 2^16.
     const uint64_t khz = tick_hz / 1000u;
     const uint64_t c0_squared = khz * khz * 913952u / accel;
-    return isqrt64(c0_squared << 8);
+    return isqrt64(c0_squared << 16);
   }
 
   RampError plan(uint32_t steps, const RampConfig& cfg) {
     const RampError err = check(cfg);
     if (err != RampError::none) return err;
-    start(steps, cfg, first_delay_q4(cfg.tick_hz, cfg.accel), (cfg.tick_hz << 4) / cfg.max_rate);
+    start(steps, cfg, first_delay_q8(cfg.tick_hz, cfg.accel),
+          uint32_t((uint64_t(cfg.tick_hz) << 8) / cfg.max_rate));
     return RampError::none;
   }
 
   // The same method with its delays given directly: c0 and the cruise delay in
-  // Q4 ticks, accel/decel only as their ratio (for the decelerating part).
+  // Q8 ticks, accel/decel only as their ratio (for the decelerating part).
   // This is how tables stated in physical units (seed-000 Appendix 1: c0 =
   // 16940.51 us for 100 rad/s^2 at 0.0314 rad/step) are reproduced exactly,
   // without rounding the acceleration to whole steps/s^2 first.
-  RampError plan_delays(uint32_t steps, uint32_t c0_q4, uint32_t cruise_q4, uint32_t accel,
+  RampError plan_delays(uint32_t steps, uint32_t c0_q8, uint32_t cruise_q8, uint32_t accel,
                         uint32_t decel) {
-    if (cruise_q4 == 0) return RampError::zero_speed;
+    if (cruise_q8 == 0) return RampError::zero_speed;
     if (accel == 0 || decel == 0) return RampError::zero_accel;
     // 2 c + rest must stay below 2^32 in the recurrence.
-    if (c0_q4 >= (uint32_t(1) << 30)) return RampError::out_of_range;
-    start(steps, RampConfig{0, 0, accel, decel}, c0_q4, cruise_q4);
+    if (c0_q8 >= kMaxDelayQ8) return RampError::out_of_range;
+    start(steps, RampConfig{0, 0, accel, decel}, c0_q8, cruise_q8);
     return RampError::none;
   }
 
-  // Unrounded (Q4) delay of the step next() will return while accelerating;
+  // Unrounded (Q8) delay of the step next() will return while accelerating;
   // on entering cruise or deceleration the step itself may still change it.
-  uint32_t accel_delay_q4() const { return c_; }
+  uint32_t accel_delay_q8() const { return c_; }
 
   bool finished() const { return remaining_ == 0 && split_.count == 0; }
   uint32_t remaining() const { return remaining_ + split_.count; }
@@ -107,18 +117,18 @@ class SpeedRamp {
   // step of the per-step schedule (tests/host/test_speed_ramp.cpp). The
   // cruise delay is then clamped to the exact max_rate. 0 turns it off (the
   // default: per-step seed behaviour).
-  void batch_below(uint32_t below_ticks) { batch_below_q4_ = below_ticks << 4; }
+  void batch_below(uint32_t below_ticks) { batch_below_q8_ = below_ticks << 8; }
 
  private:
   enum class Phase : uint8_t { accel, cruise, decel };
 
-  static uint32_t round_q4(uint32_t q4) { return (q4 + 8) >> 4; }
+  static uint32_t round_q8(uint32_t q8) { return (q8 + 128) >> 8; }
 
-  void start(uint32_t steps, const RampConfig& cfg, uint32_t c0_q4, uint32_t cruise_q4) {
+  void start(uint32_t steps, const RampConfig& cfg, uint32_t c0_q8, uint32_t cruise_q8) {
     cfg_ = cfg;
     remaining_ = steps;
-    c_ = c0_q4;
-    c_min_ = cruise_q4;
+    c_ = c0_q8;
+    c_min_ = cruise_q8;
     rest_ = 0;
     n_ = 0;
     stop_steps_ = 0;
@@ -150,7 +160,7 @@ class SpeedRamp {
       } else if (n_ > 0 && c_ < c_min_) {
         phase_ = Phase::cruise;
         stop_steps_ = stopping_steps(n_);
-        if (batch_below_q4_) c_ = c_min_;  // a run may have overshot the limit
+        if (batch_below_q8_) c_ = c_min_;  // a run may have overshot the limit
       }
     } else if (phase_ == Phase::cruise && remaining_ <= stop_steps_) {
       enter_decel();
@@ -204,7 +214,7 @@ class SpeedRamp {
 
   // Steps in a batched ramp run starting here (1 = no batching).
   uint32_t batch_size() const {
-    if (batch_below_q4_ == 0 || c_ >= batch_below_q4_) return 1;
+    if (batch_below_q8_ == 0 || c_ >= batch_below_q8_) return 1;
     if (phase_ == Phase::accel) {
       // Stay clear of the point where deceleration must begin: k more steps
       // add k * accel / decel to the stopping distance.
@@ -229,7 +239,7 @@ class SpeedRamp {
     }
     if (remaining_ == 0) return StepRun{0, 0};
     prepare_step();
-    StepRun run{round_q4(c_), 1};
+    StepRun run{round_q8(c_), 1};
     if (phase_ == Phase::cruise) {
       uint32_t span = remaining_ - stop_steps_;
       if (span > max_count) span = max_count;
@@ -267,7 +277,7 @@ class SpeedRamp {
     invariant_valid_ = true;
     rest_ = 0;
     remaining_ -= k;
-    const uint32_t total = uint32_t((uint64_t(first + last) * k + 16) >> 5);  // ticks
+    const uint32_t total = uint32_t((uint64_t(first + last) * k + 256) >> 9);  // ticks
     const uint32_t base = total / k;
     const uint16_t longer = uint16_t(total - base * k);
     if (longer < kMinSplit || k - longer < kMinSplit) {
@@ -282,12 +292,12 @@ class SpeedRamp {
 
   RampConfig cfg_{};
   uint32_t remaining_ = 0;
-  uint32_t c_ = 0;       // delay of the next step, Q4 ticks
-  uint32_t c_min_ = 0;   // cruise delay, Q4 ticks
+  uint32_t c_ = 0;       // delay of the next step, Q8 ticks
+  uint32_t c_min_ = 0;   // cruise delay, Q8 ticks
   uint32_t rest_ = 0;    // remainder carried by the recurrence
   uint32_t n_ = 0;       // accelerating steps taken
   uint32_t stop_steps_ = 0;
-  uint32_t batch_below_q4_ = 0;
+  uint32_t batch_below_q8_ = 0;
   StepRun split_{0, 0};  // the floor + 1 half of a batched run, still to give
   uint32_t invariant_ = 0;   // c sqrt(2n + 1), or c sqrt(2q - 1) decelerating
   uint8_t root_scale_ = 16;  // the invariant's root carries 2^(root_scale_/2)

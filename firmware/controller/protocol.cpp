@@ -86,9 +86,11 @@ bool execute(const am::Command& c) {
                          (c.given & am::kGivenAccel) ? c.accel : board::kDefaultAccel, 0};
       cfg.decel = (c.given & am::kGivenDecel) ? c.decel : cfg.accel;
       switch (am::SpeedRamp::check(cfg)) {
+        case am::RampError::none: break;
         case am::RampError::zero_speed: error(PSTR("speed must be above 0")); return true;
         case am::RampError::zero_accel: error(PSTR("acceleration must be above 0")); return true;
-        default: break;
+        case am::RampError::rate_above_tick: error(PSTR("speed above the timer clock")); return true;
+        case am::RampError::out_of_range: error(PSTR("acceleration too low for the timer")); return true;
       }
       const uint32_t own_limit = board::Axes::max_rate_at(uint8_t(axis));
       const uint32_t limit = own_limit ? own_limit : board::kMaxStepRate;

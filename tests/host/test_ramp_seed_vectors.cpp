@@ -23,36 +23,30 @@ const int appendix_delays[71] = {
     1667,  1652,  1638, 1624, 1611, 1598, 1585, 1572, 1560, 1548, 1537, 1525, 1514, 1503,
     1492};
 
-// c0 = 0.676 f sqrt(2 alpha / accel), in Q4 ticks.
-uint32_t seed_c0_q4() {
+// c0 = 0.676 f sqrt(2 alpha / accel), in Q8 ticks.
+uint32_t seed_c0_q8() {
   const double c0 = 0.676 * tick_hz * std::sqrt(2 * alpha / accel_rad);
-  return uint32_t(std::lround(c0 * 16));
+  return uint32_t(std::lround(c0 * 256));
 }
 
 std::vector<uint32_t> run_move(uint32_t steps) {
   am::SpeedRamp ramp;
-  EXPECT_EQ(ramp.plan_delays(steps, seed_c0_q4(), 1500 * 16, 1, 1), am::RampError::none);
+  EXPECT_EQ(ramp.plan_delays(steps, seed_c0_q8(), 1500 * 256, 1, 1), am::RampError::none);
   std::vector<uint32_t> delays;
   while (!ramp.finished()) delays.push_back(ramp.next());
   return delays;
 }
 
 TEST(RampSeedVectors, FirstDelayIs16940_51us) {
-  EXPECT_NEAR(seed_c0_q4() / 16.0, 16940.51, 0.04);
+  EXPECT_NEAR(seed_c0_q8() / 256.0, 16940.51, 0.004);
 }
 
-// SpeedRamp keeps c in Q4 and carries the division remainder from one
-// denominator to the next, which biases c up by a fraction of a microsecond
-// by mid-ramp: 6 of the 71 rounded delays come out 1 us above the table.
-TEST(RampSeedVectors, SeventyOneRoundedDelaysWithinOneMicrosecond) {
+// SpeedRamp keeps c in Q8 and carries the division remainder from one
+// denominator to the next: every one of the 71 rounded delays is the table's.
+TEST(RampSeedVectors, SeventyOneRoundedDelaysExactly) {
   const std::vector<uint32_t> delays = run_move(400);
   ASSERT_EQ(delays.size(), 400u);
-  int exact = 0;
-  for (int n = 0; n <= 70; ++n) {
-    EXPECT_NEAR(double(delays[n]), appendix_delays[n], 1.0) << "n=" << n;
-    if (delays[n] == uint32_t(appendix_delays[n])) ++exact;
-  }
-  EXPECT_EQ(exact, 65);
+  for (int n = 0; n <= 70; ++n) EXPECT_EQ(delays[n], uint32_t(appendix_delays[n])) << "n=" << n;
 }
 
 TEST(RampSeedVectors, TableRowsTimesRpmAndRates) {
@@ -66,14 +60,16 @@ TEST(RampSeedVectors, TableRowsTimesRpmAndRates) {
   for (const Row& row : rows) {
     while (n <= row.n) t += delays[n++] / tick_hz;
     const double rate = tick_hz / delays[row.n];
-    EXPECT_NEAR(t, row.end_s, 0.000006) << "n=" << row.n;
+    EXPECT_NEAR(t, row.end_s, 0.00001) << "n=" << row.n;  // the table sums unrounded delays
     EXPECT_EQ(std::lround(rate * 60 / 200), row.rpm) << "n=" << row.n;
     EXPECT_EQ(std::lround(rate), row.rate) << "n=" << row.n;
   }
-  // Elapsed before step 70: 201204 us (2 us more here: the +1 delays above).
+  // Elapsed before step 70: 201204 us in the table, the sum of the unrounded
+  // delays (201203.5); the timer runs the rounded ones, and the table's own
+  // rounded values sum to 201200.
   uint32_t before_70 = 0;
   for (int i = 0; i < 70; ++i) before_70 += delays[i];
-  EXPECT_NEAR(double(before_70), 201204, 2);
+  EXPECT_EQ(before_70, 201200u);
 }
 
 TEST(RampSeedVectors, FourHundredStepMove) {
@@ -95,12 +91,12 @@ TEST(RampSeedVectors, FourHundredStepMove) {
 
 TEST(RampSeedVectors, AccelerationCheckFromConsecutiveDelays) {
   // accel = 2 alpha f^2 (c1 - c2) / (c1 c2 (c1 + c2)) over delays n-1, n,
-  // from the ramp's unrounded (Q4) delays.
+  // from the ramp's unrounded (Q8) delays.
   am::SpeedRamp ramp;
-  ASSERT_EQ(ramp.plan_delays(400, seed_c0_q4(), 1500 * 16, 1, 1), am::RampError::none);
+  ASSERT_EQ(ramp.plan_delays(400, seed_c0_q8(), 1500 * 256, 1, 1), am::RampError::none);
   std::vector<double> c;  // us
   for (int n = 0; n <= 70; ++n) {
-    c.push_back(ramp.accel_delay_q4() / 16.0);
+    c.push_back(ramp.accel_delay_q8() / 256.0);
     ramp.next();
   }
   EXPECT_NEAR(c[70], 1492.34, 0.1);
@@ -115,11 +111,11 @@ TEST(RampSeedVectors, AccelerationCheckFromConsecutiveDelays) {
   const struct { int n; double accel; } checks[] = {
       {1, 91.18}, {2, 97.69}, {3, 98.96}, {4, 99.41}, {5, 99.62}, {10, 99.90}};
   for (const auto& check : checks) EXPECT_NEAR(accel_at(check.n), check.accel, 0.02) << check.n;
-  // n = 34..70: 99.99. A Q4 delay (1/16 us) on differences of 10-30 us
-  // resolves that only to about +-0.6 per pair; the mean is much tighter.
+  // n = 34..70: 99.99. A Q8 delay (1/256 us) on differences of 10-30 us
+  // resolves that to a few hundredths per pair; the mean is much tighter.
   double sum = 0;
   for (int n = 34; n <= 70; ++n) {
-    EXPECT_NEAR(accel_at(n), 99.99, 0.6) << n;
+    EXPECT_NEAR(accel_at(n), 99.99, 0.1) << n;
     sum += accel_at(n);
   }
   EXPECT_NEAR(sum / 37, 99.99, 0.1);

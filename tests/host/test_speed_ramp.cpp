@@ -25,7 +25,7 @@ const am::RampConfig kCfg{16000000, 4000, 8000, 8000};
 TEST(SpeedRamp, FirstDelayIsTheCorrectedAustinFormula) {
   for (uint32_t accel : {100u, 800u, 8000u, 250000u}) {
     const double expected = 0.676 * 16e6 * std::sqrt(2.0 / accel);
-    EXPECT_NEAR(am::SpeedRamp::first_delay_q4(16000000, accel) / 16.0, expected, 0.5) << accel;
+    EXPECT_NEAR(am::SpeedRamp::first_delay_q8(16000000, accel) / 256.0, expected, 0.5) << accel;
   }
 }
 

@@ -62,9 +62,15 @@ TEST(StepTiming, ShieldLatchStepsMatchTheRampToTheCycle) {
 }
 
 TEST(StepTiming, IntervalsLongerThanTheTimerAreExact) {
-  // 3 steps/s^2 makes c0 = 0.676 * 16e6 * sqrt(2/3) = 8.8 M cycles, 135 timer
-  // wraps: the wrap counting must not lose or add a tick.
-  expect_schedule("m16", 'Z', 6, am::RampConfig{16000000, 100, 3, 3});
+  // 4 steps/s^2, the gentlest the 16 MHz ramp takes, makes c0 = 0.676 * 16e6
+  // * sqrt(2/4) = 7.6 M cycles, 117 timer periods: the period counting must
+  // not lose or add a tick.
+  expect_schedule("m16", 'Z', 6, am::RampConfig{16000000, 100, 4, 4});
+  // One step/s^2 less and the first delay no longer fits the ramp: refused.
+  auto m = simtest::run("m16", {"MOVE Z6 F100 A3"});
+  ASSERT_EQ(m->serial().errors().size(), 1u);
+  EXPECT_EQ(m->serial().errors()[0], "error: acceleration too low for the timer");
+  EXPECT_TRUE(m->axis('Z')->step_cycles.empty());
 }
 
 TEST(StepTiming, EightMegahertzImageRunsOnItsOwnClock) {
