@@ -107,3 +107,31 @@ TEST(StepTiming, TimerPulseWidthMeetsDriverMinimum) {
   EXPECT_GE(shortest, 16u);
   EXPECT_LE(longest, 64u);
 }
+
+TEST(StepTiming, SoftwarePulsesMeetTheDriversTimings) {
+  // m32 X: STEP PC0, DIR PC1. A DRV8825 needs STEP high >= 1.9 us (30.4
+  // cycles) and DIR stable >= 650 ns (10.4 cycles) before a rising STEP.
+  sim::Machine m(simtest::image("m32"));
+  const auto& step = m.watch_pin('C', 0);
+  const auto& dir = m.watch_pin('C', 1);
+  for (const char* line : {"MOVE X300 F40000 A400000", "MOVE X-300 F40000 A400000", "MOVE X5"})
+    m.serial().add_line(line);
+  ASSERT_EQ(m.run_script(16000000), sim::RunEnd::done);
+  uint64_t shortest = ~0ull;
+  for (size_t i = 1; i < step.size(); ++i) {
+    if (step[i - 1].level && !step[i].level) shortest = std::min(shortest, step[i].cycle - step[i - 1].cycle);
+  }
+  EXPECT_GE(shortest, 31u);
+  // Every DIR change lies at least the set-up time before the next rise.
+  size_t checked = 0;
+  for (size_t d = 1; d < dir.size(); ++d) {
+    for (const sim::PinEdge& e : step) {
+      if (e.cycle > dir[d].cycle && e.level) {
+        EXPECT_GE(e.cycle - dir[d].cycle, 11u);
+        ++checked;
+        break;
+      }
+    }
+  }
+  EXPECT_EQ(checked, 3u);  // the first move forward, back, forward again
+}
