@@ -20,6 +20,19 @@ SerialHost::SerialHost(avr_t* avr, uint32_t baud)
 
 void SerialHost::add_line(const std::string& line) { script_.push_back(line); }
 
+void SerialHost::send_raw(const std::string& bytes) {
+  const bool idle = raw_pos_ >= raw_.size();
+  raw_ += bytes;
+  if (idle) avr_cycle_timer_register(avr_, byte_cycles_, &SerialHost::on_raw_slot, this);
+}
+
+uint64_t SerialHost::on_raw_slot(avr_t*, uint64_t when, void* self) {
+  auto* host = static_cast<SerialHost*>(self);
+  if (host->raw_pos_ >= host->raw_.size()) return 0;
+  avr_raise_irq(host->input_irq_, uint8_t(host->raw_[host->raw_pos_++]));
+  return host->raw_pos_ < host->raw_.size() ? when + host->byte_cycles_ : 0;
+}
+
 const std::string& SerialHost::banner() const {
   static const std::string none;
   return received_.empty() ? none : received_.front();

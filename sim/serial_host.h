@@ -29,6 +29,9 @@ class SerialHost {
   SerialHost(avr_t* avr, uint32_t baud);
 
   void add_line(const std::string& line);
+  // Sends bytes at the line's byte rate without waiting for any answer, as a
+  // sender that ignores the flow control would (for flood tests).
+  void send_raw(const std::string& bytes);
   bool finished() const { return finished_; }
   bool banner_seen() const { return !received_.empty(); }
 
@@ -44,6 +47,7 @@ class SerialHost {
  private:
   static void on_output(avr_irq_t* irq, uint32_t value, void* self);
   static uint64_t on_byte_slot(avr_t* avr, uint64_t when, void* self);
+  static uint64_t on_raw_slot(avr_t* avr, uint64_t when, void* self);
   void on_line(const std::string& line);
   void send_next();
 
@@ -53,6 +57,8 @@ class SerialHost {
   std::deque<std::string> script_;
   std::string outgoing_;
   size_t outgoing_pos_ = 0;
+  std::string raw_;
+  size_t raw_pos_ = 0;
   bool awaiting_answer_ = false;
   bool wait_sent_ = false;
   bool finished_ = false;
