@@ -81,6 +81,10 @@ bool execute(const am::Command& c) {
         error(PSTR("no such axis on this board"));
         return true;
       }
+      if (c.steps > kMaxMoveSteps || c.steps < -kMaxMoveSteps) {
+        error(PSTR("move too long (max 16777216 steps)"));
+        return true;
+      }
       am::RampConfig cfg{board::kStepTimerHz,
                          (c.given & am::kGivenRate) ? c.rate : board::kDefaultRate,
                          (c.given & am::kGivenAccel) ? c.accel : board::kDefaultAccel, 0};
@@ -99,10 +103,6 @@ bool execute(const am::Command& c) {
         hal::uart::write_P(PSTR("warning: F clamped to "));
         hal::uart::write_u32(limit);
         hal::uart::write('\n');
-      }
-      if (c.steps > kMaxMoveSteps || c.steps < -kMaxMoveSteps) {
-        error(PSTR("move too long (max 16777216 steps)"));
-        return true;
       }
       if (c.steps != 0) planner::start(uint8_t(axis), c.steps, cfg);
       ok();
