@@ -28,6 +28,7 @@ constexpr uint32_t kMaxStepRate = F_CPU / 800;  // 20 kHz at 16 MHz, 10 kHz at 8
 constexpr uint32_t kDefaultRate = 1000;
 constexpr uint32_t kDefaultAccel = 4000;
 constexpr uint8_t kStepPulsePadCycles = F_CPU / 1000000 * 3 / 2;  // >= 1.9 us with bookkeeping
+constexpr uint8_t kTimerPulseCycles = 0;  // no timer-pulsed axis
 
 inline void init() {
   Pin<'D', 5>::low();  // L298 enable: motor free until the servo runs

@@ -29,6 +29,7 @@ constexpr uint32_t kMaxStepRate = 40000;
 constexpr uint32_t kDefaultRate = 4000;    // steps/s (4 mm/s)
 constexpr uint32_t kDefaultAccel = 20000;  // steps/s^2
 constexpr uint8_t kStepPulsePadCycles = 24;  // >= 1.9 us with the bookkeeping (DRV8825)
+constexpr uint8_t kTimerPulseCycles = 0;  // no timer-pulsed axis
 
 inline void init() {
   Pin<'D', 7>::low();  // heater off before the pin becomes an output

@@ -36,6 +36,7 @@ constexpr uint32_t kMaxStepRate = 20000;
 constexpr uint32_t kDefaultRate = 400;   // steps/s
 constexpr uint32_t kDefaultAccel = 800;  // steps/s^2
 constexpr uint8_t kStepPulsePadCycles = 0;  // coils, not pulses: no width to meet
+constexpr uint8_t kTimerPulseCycles = 32;  // 2 us: A4988, DRV8825 (1.9 us) and TMC drivers
 
 inline void init() {
   Latch::init();

@@ -12,6 +12,13 @@ namespace {
 constexpr uint8_t kTimerAxes = board::Axes::timer_mask;
 using Queue = am::StepQueue<kQueueSize>;
 
+// The timer-pulsed STEP ends at the FOC strobe below, 20 cycles after its
+// match without padding (4 response + 3 JMP + 13 in the vector); the board
+// asks for kTimerPulseCycles. Three cycles per turn of the padding loop.
+constexpr uint8_t kPulsePathCycles = 20;
+constexpr uint8_t kPulsePadTurns =
+    board::kTimerPulseCycles > kPulsePathCycles ? (board::kTimerPulseCycles - kPulsePathCycles + 2) / 3 : 0;
+
 // The layout facts the assembly below relies on.
 static_assert(offsetof(am::StepSegment, count) == 0, "segment layout");
 static_assert(offsetof(am::StepSegment, compare) == 2, "segment layout");
@@ -134,8 +141,9 @@ bool push(const am::StepSegment& segment) {
 }  // namespace engine
 
 // The compare-A vector. Steady cruise of the timer-pulsed axis is the hot
-// path and is written in assembly: ending the pulse, re-arming it and counting
-// take about 50 cycles including the interrupt response and RETI, where a C
+// path and is written in assembly: ending the pulse (after the board's pulse
+// width), re-arming it and counting take 54 cycles plus the padding,
+// including the interrupt response and RETI, where a C
 // handler would spend more than that saving and restoring the 17 registers
 // its calls may clobber. At a segment's last step it reads the next segment
 // straight from the ring and, if that one continues the same axis in the
@@ -154,6 +162,11 @@ ISR(TIMER1_COMPA_vect, ISR_NAKED) {
       "breq 3f\n\t"
       "ldi r24, %[clear]\n\t"
       "sts %[tccr1a], r24\n\t"
+      ".if %[pad]\n\t"
+      "ldi r24, %[pad]\n\t"
+      "9: dec r24\n\t"
+      "brne 9b\n\t"
+      ".endif\n\t"
       "ldi r24, %[force]\n\t"
       "sts %[force_reg], r24\n\t"
       "3:\n\t"
@@ -251,7 +264,8 @@ ISR(TIMER1_COMPA_vect, ISR_NAKED) {
       [force_reg] "n"(_SFR_MEM_ADDR(HAL_FORCE_OC1A_REG)), [force] "n"(HAL_FORCE_OC1A_VALUE),
       [clear] "n"(hal::step_timer::kOc1aClear), [set] "n"(hal::step_timer::kOc1aSet),
       [head] "n"(engine::Queue::head_offset()), [tail] "n"(engine::Queue::tail_offset()),
-      [mask] "n"(engine::kQueueSize - 1), [timer_axes] "n"(engine::kTimerAxes));
+      [mask] "n"(engine::kQueueSize - 1), [timer_axes] "n"(engine::kTimerAxes),
+      [pad] "n"(engine::kPulsePadTurns));
 }
 
 // The end of a timer-only segment that the vector could not continue: the

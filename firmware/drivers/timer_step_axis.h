@@ -18,10 +18,10 @@ struct TimerStepAxis {
   static constexpr char name = Name;
   static constexpr bool timer_pulse = true;
   // The pulse must have ended before the next match raises STEP again. It
-  // ends about 26 cycles after its match, later by whatever holds the step
-  // vector off: a UART handler's prologue (they nest, about 25 cycles) or a
-  // shield latch write from the main loop (interrupts off, about 70 cycles).
-  // 100 cycles between steps leave the pulse low for at least 4: 160 kHz at
+  // ends kTimerPulseCycles (32 on the Uno) after its match, later by
+  // whatever holds the step vector off: a UART handler's prologue (they
+  // nest, about 25 cycles) or a shield latch write from the main loop
+  // (interrupts off, about 70 cycles). 100 cycles between steps: 160 kHz at
   // 16 MHz, checked by avrmotion-bench.
   static constexpr uint32_t max_rate = F_CPU / 100;
 
