@@ -1,8 +1,8 @@
 // An axis on a step/direction driver whose STEP input is wired to the step
 // timer's OC1A pin (Uno D9; PD5 on the ATmega16/32). The compare match itself
 // raises the step line, so every rising edge sits exactly on its timer tick:
-// no interrupt latency, no jitter. The step interrupt ends the pulse about
-// 1.5 us later (see docs/step-engine.md) and arms the next one.
+// no interrupt latency, no jitter. The step interrupt ends the pulse the
+// board's kTimerPulseCycles later (docs/step-engine.md) and arms the next one.
 //
 // One such axis per board: there is one OC1A.
 #pragma once
