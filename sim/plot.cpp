@@ -39,19 +39,24 @@ void write_position_plot(const std::string& path, const Machine& m) {
       << "' font-family='sans-serif' font-size='12'>\n"
       << "<rect width='100%' height='100%' fill='white'/>\n"
       << "<text x='" << kMargin << "' y='20'>" << m.board().board << " (" << m.board().mcu
-      << "): position against time</text>\n"
-      << "<line x1='" << kMargin << "' y1='" << y(lo) << "' x2='" << kWidth - kMargin << "' y2='" << y(lo)
-      << "' stroke='black'/>\n"
-      << "<line x1='" << kMargin << "' y1='" << y(lo) << "' x2='" << kMargin << "' y2='" << y(hi)
-      << "' stroke='black'/>\n"
-      << "<text x='" << kWidth - kMargin << "' y='" << y(lo) + 20 << "' text-anchor='end'>" << t_end
-      << " s</text>\n"
-      << "<text x='" << kMargin - 5 << "' y='" << y(hi) + 4 << "' text-anchor='end'>" << hi << " mm</text>\n"
-      << "<text x='" << kMargin - 5 << "' y='" << y(lo) + 4 << "' text-anchor='end'>" << lo << " mm</text>\n";
+      << "): position against time</text>\n";
+  // Five ticks on each axis, with light grid lines.
+  for (int i = 0; i <= 4; ++i) {
+    const double t = t_end * i / 4, mm = lo + (hi - lo) * i / 4;
+    svg << "<line x1='" << x(t) << "' y1='" << y(lo) << "' x2='" << x(t) << "' y2='" << y(hi)
+        << "' stroke='#e0e0e0'/>\n"
+        << "<text x='" << x(t) << "' y='" << y(lo) + 16 << "' text-anchor='middle'>" << t << " s</text>\n"
+        << "<line x1='" << x(0) << "' y1='" << y(mm) << "' x2='" << x(t_end) << "' y2='" << y(mm)
+        << "' stroke='#e0e0e0'/>\n"
+        << "<text x='" << kMargin - 5 << "' y='" << y(mm) + 4 << "' text-anchor='end'>" << mm << "</text>\n";
+  }
+  svg << "<text x='12' y='" << y(hi) - 10 << "'>mm</text>\n"
+      << "<rect x='" << x(0) << "' y='" << y(hi) << "' width='" << x(t_end) - x(0) << "' height='"
+      << y(lo) - y(hi) << "' fill='none' stroke='black'/>\n";
   size_t colour = 0;
   for (const AxisTrace& a : m.axes()) {
-    const char* c = kColours[colour++ % 4];
-    svg << "<polyline fill='none' stroke='" << c << "' points='" << x(0) << "," << y(0);
+    const char* c = kColours[colour % 4];
+    svg << "<polyline fill='none' stroke='" << c << "' stroke-width='1.5' points='" << x(0) << "," << y(0);
     int64_t p = 0;
     // Thin very long runs so the file stays small: at most ~4000 points.
     const size_t stride = std::max<size_t>(1, a.step_cycles.size() / 4000);
@@ -62,8 +67,12 @@ void write_position_plot(const std::string& path, const Machine& m) {
       }
     }
     svg << " " << x(t_end) << "," << y(axis_mm(a, p)) << "'/>\n";
-    svg << "<text x='" << kWidth - kMargin + 5 << "' y='" << y(axis_mm(a, p)) + 4 << "' fill='" << c << "'>"
-        << a.name << "</text>\n";
+    // Legend along the top.
+    const double lx = kMargin + 260 + 70 * double(colour);
+    svg << "<line x1='" << lx << "' y1='16' x2='" << lx + 20 << "' y2='16' stroke='" << c
+        << "' stroke-width='3'/>\n"
+        << "<text x='" << lx + 25 << "' y='20'>" << a.name << "</text>\n";
+    ++colour;
   }
   svg << "</svg>\n";
 }
