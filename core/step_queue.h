@@ -61,6 +61,10 @@ class StepQueue {
   bool push(const StepSegment& s) {
     if (full()) return false;
     slots_[head_ & (Size - 1)] = s;
+    // The slot must be written before the index that publishes it: only
+    // volatile accesses are ordered among themselves, so fence the plain
+    // stores (a compiler barrier: the AVR itself does not reorder).
+    __atomic_signal_fence(__ATOMIC_RELEASE);
     head_ = uint8_t(head_ + 1);
     return true;
   }

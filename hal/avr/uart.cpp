@@ -34,6 +34,7 @@ bool available() { return rx_head != rx_tail; }
 
 uint8_t read() {
   const uint8_t c = rx_buf[rx_tail % kRxSize];
+  __atomic_signal_fence(__ATOMIC_ACQ_REL);  // read the byte before freeing its slot
   rx_tail = uint8_t(rx_tail + 1);
   return c;
 }
@@ -48,6 +49,7 @@ void write(uint8_t c) {
   while (uint8_t(tx_head - tx_tail) == kTxSize) {
   }
   tx_buf[tx_head % kTxSize] = c;
+  __atomic_signal_fence(__ATOMIC_RELEASE);  // the byte before the index that publishes it
   tx_head = uint8_t(tx_head + 1);
   HAL_UCSRB |= _BV(HAL_UDRIE);
 }
@@ -104,6 +106,7 @@ ISR(HAL_UART_RX_VECT) {
     return;
   }
   rx_buf[head % kRxSize] = c;
+  __atomic_signal_fence(__ATOMIC_RELEASE);  // the byte before the index that publishes it
   rx_head = uint8_t(head + 1);
 }
 
