@@ -25,15 +25,18 @@
 #include "../../core/phase_sequencer.h"
 #include "../../hal/avr/adc.h"
 #include "../../hal/avr/ext_int.h"
+#include "../../hal/avr/gpio.h"
+#include "../../hal/avr/uart.h"
 #include "../board.h"
 #include "coil_drive.h"
 
 namespace {
 
 using Coils = driver::CoilMap<board::CoilA::mask, board::CoilB::mask, board::CoilC::mask, board::CoilD::mask>;
-static_assert(board::CoilA::port == 'B' && board::CoilB::port == 'B' && board::CoilC::port == 'B' &&
-                  board::CoilD::port == 'B',
-              "the four coils are written in one PORTB write");
+using CoilPort = hal::PortBits<board::CoilA::port>;
+static_assert(board::CoilB::port == board::CoilA::port && board::CoilC::port == board::CoilA::port &&
+                  board::CoilD::port == board::CoilA::port,
+              "the four coils are written in one port write");
 
 // Port bits of the four two-phase states in clockwise order, states[0] = AB.
 // Filled once at start-up from core/phase_sequencer.h, so the sequence has one
@@ -46,10 +49,8 @@ driver::Chopper<board::kCurrentLimit> chopper;
 // Shared between both ISRs and the main loop: ISRs do not nest and the main
 // loop touches them only between cli() and sei() (both memory barriers).
 
-// Callers hold interrupts off, so the read-modify-write of PORTB is atomic.
-inline void write_coils() {
-  PORTB = uint8_t((PORTB & uint8_t(~Coils::all)) | (state_bits & uint8_t(~chopper.cut())));
-}
+// Callers hold interrupts off, so the read-modify-write of the port is atomic.
+inline void write_coils() { CoilPort::write(Coils::all, uint8_t(state_bits & ~chopper.cut())); }
 
 }  // namespace
 
@@ -76,14 +77,14 @@ int main() {
   // (a pull-up on ENABLE would power the coils with the cable unplugged).
   // The USART would take PD0/PD1 (RXD/TXD) from DIR/ENABLE: its reset state
   // is off, but a bootloader may have left TXEN set, which would drive ENABLE.
-  HAL_UCSRB = 0;
+  hal::uart::off();
 
   // Index 1 of the half-step cycle is A+B+ = AB, the seed's power-up state.
   am::PhaseSequencer sequencer(am::StepMode::two_phase, 1);
   states[0] = Coils::port_bits(sequencer.hold());
   for (uint8_t i = 1; i < 4; ++i) states[i] = Coils::port_bits(sequencer.step(true));
-  PORTB &= uint8_t(~Coils::all);  // coils off before the pins drive
-  DDRB |= Coils::all;
+  CoilPort::write(Coils::all, 0);  // coils off before the pins drive
+  CoilPort::output(Coils::all);
 
   // ADC clock F_CPU/64 = 250 kHz: above the 200 kHz the datasheet asks for
   // 10-bit accuracy, within its range for the 8 bits used here; one

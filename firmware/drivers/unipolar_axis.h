@@ -61,8 +61,7 @@ struct UnipolarAxis {
                                    ((pattern & am::coil::b_pos) ? In2::mask : 0) |
                                    ((pattern & am::coil::a_neg) ? In3::mask : 0) |
                                    ((pattern & am::coil::b_neg) ? In4::mask : 0));
-      volatile uint8_t& port = _SFR_IO8(In1::pin_reg + 2);
-      port = uint8_t((port & uint8_t(~port_mask)) | bits);
+      hal::PortBits<In1::port>::write(port_mask, bits);
       return;
     }
     const bool single = pattern == am::coil::a_pos || pattern == am::coil::b_pos ||

@@ -27,4 +27,18 @@ struct Pin {
   static bool read() { return (_SFR_IO8(pin_reg) & mask) != 0; }
 };
 
+// Several pins of one port changed in a single write, so they switch in the
+// same cycle (coil patterns). A read-modify-write of PORTx: atomic only with
+// interrupts off or when no interrupt writes the same port.
+template <char Port>
+struct PortBits {
+  static constexpr uint8_t pin_reg = family::pin_io_address(Port);
+  static_assert(pin_reg != 0xFF, "this MCU has no such port");
+
+  static void write(uint8_t mask, uint8_t bits) {
+    _SFR_IO8(pin_reg + 2) = uint8_t((_SFR_IO8(pin_reg + 2) & uint8_t(~mask)) | (bits & mask));
+  }
+  static void output(uint8_t mask) { _SFR_IO8(pin_reg + 1) |= mask; }
+};
+
 }  // namespace hal

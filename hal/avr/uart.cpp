@@ -30,6 +30,8 @@ void init(uint32_t f_cpu, uint32_t baud) {
   HAL_UCSRB = _BV(HAL_RXEN) | _BV(HAL_TXEN) | _BV(HAL_RXCIE);
 }
 
+void off() { HAL_UCSRB = 0; }
+
 bool available() { return rx_head != rx_tail; }
 
 uint8_t read() {

@@ -14,6 +14,7 @@ namespace hal {
 namespace uart {
 
 void init(uint32_t f_cpu, uint32_t baud);
+void off();              // receiver and transmitter off: RXD/TXD are plain pins
 bool available();
 uint8_t read();          // valid only when available()
 bool overrun();          // true once after bytes were lost; clears the flag
