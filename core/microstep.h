@@ -28,6 +28,8 @@
 #pragma once
 #include <stdint.h>
 
+#include "phase_sequencer.h"
+
 namespace am {
 
 namespace microstep_detail {
@@ -231,13 +233,12 @@ struct ExcitationTable {
       const uint8_t pb = (q & 1) ? falling : rising;
       micro[i] = ExcitationEntry{uint8_t((pa ? a_bit[q] : 0) | (pb ? b_bit[q] : 0)), pa, pb};
     }
-    const uint8_t ends[4] = {a_pos, b_pos, a_neg, b_neg};
+    const uint8_t ends[4] = {a_pos, b_pos, a_neg, b_neg};  // coil-pattern bit order
     for (uint8_t j = 0; j < 8; ++j) {
-      // half_step_pattern() is not constexpr; the same cycle, spelled out:
-      // state j lights end j/2 and, for odd j, also the next end.
-      const uint8_t first = ends[(j >> 1) & 3];
-      const uint8_t second = (j & 1) ? ends[((j >> 1) + 1) & 3] : 0;
-      full[j] = ExcitationEntry{uint8_t(first | second), 255, 255};
+      const uint8_t pattern = half_step_pattern(j);
+      uint8_t bits = 0;
+      for (uint8_t e = 0; e < 4; ++e) bits = uint8_t(bits | ((pattern >> e) & 1 ? ends[e] : 0));
+      full[j] = ExcitationEntry{bits, 255, 255};
     }
   }
 };

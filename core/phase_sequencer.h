@@ -25,14 +25,16 @@ namespace coil {
 constexpr uint8_t a_pos = 0x1, b_pos = 0x2, a_neg = 0x4, b_neg = 0x8, off = 0x0;
 }
 
-// Coil pattern of each of the 8 half-step states. A table, not a chain of
-// comparisons: the step interrupt calls this on every coil-driven step.
-inline uint8_t half_step_pattern(uint8_t index) {
-  static const uint8_t patterns[8] = {
-      coil::a_pos,          coil::a_pos | coil::b_pos, coil::b_pos,          coil::b_pos | coil::a_neg,
-      coil::a_neg,          coil::a_neg | coil::b_neg, coil::b_neg,          coil::b_neg | coil::a_pos};
-  return patterns[index & 7];
-}
+// Coil pattern of each of the 8 half-step states: the one definition of the
+// cycle (the shield's flash tables are built from it at compile time). A
+// table, not a chain of comparisons, since the step interrupt calls this on
+// every coil-driven step; at namespace scope, because avr-gcc copies a
+// function-local constexpr array onto the stack on every call.
+constexpr uint8_t kHalfStepPatterns[8] = {
+    coil::a_pos,          coil::a_pos | coil::b_pos, coil::b_pos,          coil::b_pos | coil::a_neg,
+    coil::a_neg,          coil::a_neg | coil::b_neg, coil::b_neg,          coil::b_neg | coil::a_pos};
+
+constexpr uint8_t half_step_pattern(uint8_t index) { return kHalfStepPatterns[index & 7]; }
 
 class PhaseSequencer {
  public:

@@ -72,6 +72,13 @@ class StepQueue {
   // Consumer side: the oldest segment, valid while !empty().
   StepSegment& front() { return slots_[tail_ & (Size - 1)]; }
   void pop() { tail_ = uint8_t(tail_ + 1); }
+  // pop(), then the new front, or nullptr when that emptied the queue: one
+  // read of each index, for the step interrupt's segment change.
+  const StepSegment* pop_and_front() {
+    const uint8_t tail = uint8_t(tail_ + 1);
+    tail_ = tail;
+    return tail == head_ ? nullptr : &slots_[tail & (Size - 1)];
+  }
 
   void clear() { tail_ = head_; }
 

@@ -63,9 +63,10 @@ inline bool fast_eligible(const am::StepSegment& s) {
 // the new period's match is barely 100 cycles away.
 inline uint16_t first_period(const am::StepSegment& s) {
   if (kTimerAxes) {
-    step_armed = s.wraps == 0 && (s.axes & kTimerAxes);
-    if (step_armed) hal::step_timer::arm_pulse();
-    else hal::step_timer::disarm_pulse();
+    const bool armed = s.wraps == 0 && (s.axes & kTimerAxes);
+    if (armed) hal::step_timer::arm_pulse();
+    else if (step_armed) hal::step_timer::disarm_pulse();
+    step_armed = armed;
   }
   return s.wraps ? s.wrap_compare : s.compare;
 }
@@ -83,7 +84,7 @@ inline void load_front(const am::StepSegment& s) {
   axes = s.axes;
   step_dirs = s.dirs;
   step_fast = fast_eligible(s);
-  board::Axes::set_direction(axes, step_dirs);
+  board::Axes::set_direction(s.axes, s.dirs);
 }
 
 // The queue ran dry: stop the clock first (a pulse may be armed), then reset.
@@ -98,14 +99,13 @@ inline void stop_engine() {
 // The current segment is done: on to the next one, programming its first
 // period before anything else, or stop if there is none.
 inline void next_segment() {
-  step_queue.pop();
-  if (step_queue.empty()) {
+  const am::StepSegment* s = step_queue.pop_and_front();
+  if (!s) {
     stop_engine();
     return;
   }
-  const am::StepSegment& s = step_queue.front();
-  hal::step_timer::set_compare(first_period(s));
-  load_front(s);
+  hal::step_timer::set_compare(first_period(*s));
+  load_front(*s);
 }
 
 // Arms the hardware pulse when the period just programmed ends in a step of
