@@ -136,3 +136,10 @@ TEST(StepTiming, SoftwarePulsesMeetTheDriversTimings) {
   }
   EXPECT_EQ(checked, 3u);  // the first move forward, back, forward again
 }
+
+TEST(StepTiming, ACruiseLongerThanOneSegmentStaysExact) {
+  // 150000 steps at 160 kHz: the cruise is about 86000 steps, more than one
+  // segment's 16-bit count, so the planner splits it and the fast path hands
+  // over between the parts. Every step still lands on the schedule.
+  expect_schedule("uno", 'Z', 150000, am::RampConfig{16000000, 160000, 400000, 400000}, kTimerPulseSpread);
+}
