@@ -1,0 +1,51 @@
+// The example jobs in examples/ run as their comments say: the README points
+// users at them, so they must stay true.
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "sim_fixture.h"
+
+namespace {
+
+std::vector<std::string> job(const std::string& file) {
+  std::ifstream in(std::string(AVRMOTION_SOURCE_DIR) + "/examples/" + file);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) {
+    line = line.substr(0, line.find('#'));
+    const size_t end = line.find_last_not_of(" \t\r");
+    if (end != std::string::npos) lines.push_back(line.substr(0, end + 1));
+  }
+  return lines;
+}
+
+}  // namespace
+
+TEST(Examples, UnoDemo) {
+  const auto lines = job("demo.txt");
+  ASSERT_EQ(lines.size(), 9u);
+  auto m = simtest::run("uno", lines, 30);
+  EXPECT_EQ(m->serial().errors(), std::vector<std::string>{"error: no such axis on this board"});
+  const std::vector<std::string> messages = {"warning: F clamped to 160000", "pos X:450 Y:-250 U:2048 Z:0"};
+  EXPECT_EQ(m->serial().messages(), messages);
+  EXPECT_DOUBLE_EQ(m->axis('X')->steps(), 450);  // 500 full steps, then 800 sixteenths back
+  EXPECT_DOUBLE_EQ(m->axis('Y')->steps(), -250);
+  EXPECT_DOUBLE_EQ(m->axis('U')->steps(), 2048);
+  EXPECT_DOUBLE_EQ(m->axis('Z')->steps(), 0);
+  EXPECT_EQ(m->axis('Z')->step_cycles.size(), 80000u);
+}
+
+TEST(Examples, M32Demo) {
+  auto m = simtest::run("m32", job("m32-demo.txt"), 30);
+  EXPECT_TRUE(m->serial().errors().empty());
+  const std::vector<std::string> messages = {"warning: F clamped to 40000", "pos X:0 Y:-15000 Z:500 E:3000 U:2048"};
+  EXPECT_EQ(m->serial().messages(), messages);
+  EXPECT_DOUBLE_EQ(m->axis('Y')->steps(), -15000);
+}
+
+TEST(Examples, M16Demo) {
+  auto m = simtest::run("m16", job("m16-demo.txt"), 30);
+  EXPECT_TRUE(m->serial().errors().empty());
+  EXPECT_EQ(m->serial().messages(), std::vector<std::string>{"pos Z:0 U:2048"});
+  EXPECT_EQ(m->axis('Z')->step_cycles.size(), 6300u);  // 50 mm out and back
+}
