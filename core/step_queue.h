@@ -80,8 +80,6 @@ class StepQueue {
     return tail == head_ ? nullptr : &slots_[tail & (Size - 1)];
   }
 
-  void clear() { tail_ = head_; }
-
   // Layout, for a consumer written in assembly (the AVR step engine's fast
   // path reads the ring directly). The class is standard-layout, so offsetof
   // is well defined.

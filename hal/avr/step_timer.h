@@ -42,10 +42,8 @@ inline void set_compare(uint16_t compare) { OCR1A = compare; }
 // without a match) and arms the next one ("set on match"). WGM11:10 are 0 in
 // CTC mode, so TCCR1A holds nothing but these bits.
 inline void arm_pulse() { TCCR1A = kOc1aSet; }
-inline void end_pulse() {
-  TCCR1A = kOc1aClear;
-  HAL_FORCE_OC1A_REG = HAL_FORCE_OC1A_VALUE;
-}
+// Ending a pulse is the step vector's own job (step_engine.cpp, in assembly:
+// "clear" mode, then HAL_FORCE_OC1A_REG = HAL_FORCE_OC1A_VALUE).
 // Leaves OC1A driven low by "clear on match" (a match then changes nothing).
 inline void disarm_pulse() { TCCR1A = kOc1aClear; }
 

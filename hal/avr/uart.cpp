@@ -83,11 +83,6 @@ void write_i32(int32_t v) {
   }
 }
 
-void flush() {
-  while (tx_head != tx_tail) {
-  }
-}
-
 }  // namespace uart
 }  // namespace hal
 

@@ -23,7 +23,6 @@ void write(const char* s);
 void write_P(const char* progmem_s);
 void write_u32(uint32_t v);
 void write_i32(int32_t v);
-void flush();            // waits until the transmit ring has drained into the UART
 
 }  // namespace uart
 }  // namespace hal
