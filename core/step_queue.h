@@ -72,7 +72,7 @@ class StepQueue {
   // Consumer side: the oldest segment, valid while !empty().
   StepSegment& front() { return slots_[tail_ & (Size - 1)]; }
   void pop() { tail_ = uint8_t(tail_ + 1); }
-  // pop(), then the new front, or nullptr when that emptied the queue: one
+  // pop(), then the next front, or nullptr when that emptied the queue: one
   // read of each index, for the step interrupt's segment change.
   const StepSegment* pop_and_front() {
     const uint8_t tail = uint8_t(tail_ + 1);
