@@ -11,10 +11,15 @@
 // Why it is built this way
 //   The timer, not software, measures every interval: the compare match fires
 //   exactly `interval` cycles after the previous one, whatever the interrupt
-//   latency was, so latency can delay a pulse by a few cycles but can never
-//   accumulate into the schedule. Intervals longer than the 16-bit timer are
-//   split by the planner into whole 65536-tick wraps plus a remainder, and the
-//   interrupt merely counts wraps, so it needs no 32-bit arithmetic.
+//   latency was, so latency can delay a software pulse by a few cycles but
+//   can never accumulate into the schedule; a timer-pulsed axis (OC1A) has its
+//   edge made by the match itself. Intervals longer than the 16-bit timer are
+//   split by the planner into equal periods of at least 32768 ticks, and the
+//   interrupt merely counts them, so it needs no 32-bit arithmetic. Every
+//   period must outlast the interrupt path that programs the next one: the
+//   axes' rate limits (protocol.cpp) keep step intervals above it. The
+//   timer-pulsed axis's cruise runs in an assembly fast path that also
+//   switches segments by itself (docs/step-engine.md).
 #pragma once
 #include <stdint.h>
 
