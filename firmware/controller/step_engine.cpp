@@ -61,13 +61,16 @@ inline bool fast_eligible(const am::StepSegment& s) {
 // period ends in a step of the timer-pulsed axis, and its compare value.
 // This comes before anything else at a segment change, because at 150 kHz
 // the new period's match is barely 100 cycles away.
+// Arms the hardware pulse for the period just programmed, or leaves OC1A to
+// "clear" (rewritten only when that changes the state).
+inline void set_armed(bool armed) {
+  if (armed) hal::step_timer::arm_pulse();
+  else if (step_armed) hal::step_timer::disarm_pulse();
+  step_armed = armed;
+}
+
 inline uint16_t first_period(const am::StepSegment& s) {
-  if (kTimerAxes) {
-    const bool armed = s.wraps == 0 && (s.axes & kTimerAxes);
-    if (armed) hal::step_timer::arm_pulse();
-    else if (step_armed) hal::step_timer::disarm_pulse();
-    step_armed = armed;
-  }
+  if (kTimerAxes) set_armed(s.wraps == 0 && (s.axes & kTimerAxes));
   return s.wraps ? s.wrap_compare : s.compare;
 }
 
@@ -111,9 +114,7 @@ inline void next_segment() {
 // Arms the hardware pulse when the period just programmed ends in a step of
 // the timer-pulsed axis. Compiles to nothing on boards without one.
 inline void arm_if_step_period() {
-  if (!kTimerAxes) return;
-  step_armed = wraps_left == 0 && (axes & kTimerAxes);
-  if (step_armed) hal::step_timer::arm_pulse();
+  if (kTimerAxes) set_armed(wraps_left == 0 && (axes & kTimerAxes));
 }
 
 }  // namespace
