@@ -10,8 +10,11 @@
 //
 // Method (the "seed" method, Austin / Atmel AVR446, as in seed-000 Appendix 1)
 //   c0 = 0.676 * f * sqrt(2 / accel) and c_n = c_{n-1} - 2 c_{n-1} / (4n + 1).
-//   The ramp accelerates until the first c below the cruise delay and holds that
-//   c (the reference tables do the same); deceleration runs the recurrence
+//   The ramp accelerates until the first c below the cruise delay and cruises
+//   at the cruise delay itself from that step on (the reference tables run
+//   that first c, up to 0.5 % too fast: here no interval is ever shorter than
+//   max_rate allows, however large the acceleration, and a c0 already below
+//   the cruise delay starts the move at cruise speed); deceleration runs the recurrence
 //   backwards, c_{k-1} = c_k + 2 c_k / (4k - 1), over the last k steps, where
 //   k is the number of steps needed to stop (n_accel * accel / decel). A move
 //   too short to reach cruise speed turns into a triangle at the step where the
@@ -72,8 +75,9 @@ class SpeedRamp {
   RampError plan(uint32_t steps, const RampConfig& cfg) {
     const RampError err = check(cfg);
     if (err != RampError::none) return err;
-    start(steps, cfg, first_delay_q8(cfg.tick_hz, cfg.accel),
-          uint32_t((uint64_t(cfg.tick_hz) << 8) / cfg.max_rate));
+    // Whole ticks, rounded up: the cruise never exceeds max_rate.
+    const uint32_t cruise_ticks = cfg.tick_hz / cfg.max_rate + (cfg.tick_hz % cfg.max_rate != 0);
+    start(steps, cfg, first_delay_q8(cfg.tick_hz, cfg.accel), cruise_ticks << 8);
     return RampError::none;
   }
 
@@ -123,12 +127,14 @@ class SpeedRamp {
   enum class Phase : uint8_t { accel, cruise, decel };
 
   static uint32_t round_q8(uint32_t q8) { return (q8 + 128) >> 8; }
+  uint32_t at_least_cruise(uint32_t ticks) const { return ticks < min_ticks_ ? min_ticks_ : ticks; }
 
   void start(uint32_t steps, const RampConfig& cfg, uint32_t c0_q8, uint32_t cruise_q8) {
     cfg_ = cfg;
     remaining_ = steps;
     c_ = c0_q8;
     c_min_ = cruise_q8;
+    min_ticks_ = (cruise_q8 + 255) >> 8;
     rest_ = 0;
     n_ = 0;
     stop_steps_ = 0;
@@ -157,10 +163,13 @@ class SpeedRamp {
     if (phase_ == Phase::accel) {
       if (n_ > 0 && remaining_ <= stopping_steps(n_)) {
         enter_decel();
-      } else if (n_ > 0 && c_ < c_min_) {
+      } else if (c_ < c_min_) {
         phase_ = Phase::cruise;
         stop_steps_ = stopping_steps(n_);
-        if (batch_below_q8_) c_ = c_min_;  // a run may have overshot the limit
+        // Per-step ramps keep the recurrence's c, so deceleration mirrors
+        // the acceleration exactly (steps run no faster than the cruise
+        // anyway); a batched run may have overshot far below the limit.
+        if (batch_below_q8_) c_ = c_min_;
       }
     } else if (phase_ == Phase::cruise && remaining_ <= stop_steps_) {
       enter_decel();
@@ -239,7 +248,7 @@ class SpeedRamp {
     }
     if (remaining_ == 0) return StepRun{0, 0};
     prepare_step();
-    StepRun run{round_q8(c_), 1};
+    StepRun run{at_least_cruise(round_q8(c_)), 1};
     if (phase_ == Phase::cruise) {
       uint32_t span = remaining_ - stop_steps_;
       if (span > max_count) span = max_count;
@@ -279,6 +288,8 @@ class SpeedRamp {
     remaining_ -= k;
     const uint32_t total = uint32_t((uint64_t(first + last) * k + 256) >> 9);  // ticks
     const uint32_t base = total / k;
+    // A run that reaches the cruise speed on its way runs at it.
+    if (base < min_ticks_) return StepRun{min_ticks_, k};
     const uint16_t longer = uint16_t(total - base * k);
     if (longer < kMinSplit || k - longer < kMinSplit) {
       // A short half would be a short segment, which the step engine must
@@ -294,6 +305,7 @@ class SpeedRamp {
   uint32_t remaining_ = 0;
   uint32_t c_ = 0;       // delay of the next step, Q8 ticks
   uint32_t c_min_ = 0;   // cruise delay, Q8 ticks
+  uint32_t min_ticks_ = 0;  // the cruise delay rounded up: the shortest interval
   uint32_t rest_ = 0;    // remainder carried by the recurrence
   uint32_t n_ = 0;       // accelerating steps taken
   uint32_t stop_steps_ = 0;

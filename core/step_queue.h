@@ -8,6 +8,10 @@
 //   queue is single-producer single-consumer and lock-free because each index
 //   is written by one side only and is one byte wide (atomic on the AVR).
 //
+//   `chain` is the consumer's own mark (make() leaves it 0): the AVR engine
+//   sets it on a segment that its assembly fast path may switch to without
+//   the C handler (docs/step-engine.md).
+//
 //   The interval is stored pre-split for a 16-bit timer: `wraps` periods of
 //   wrap_compare + 1 ticks followed by a final period of compare + 1 ticks.
 //   The interrupt therefore never divides or compares 32-bit numbers; all of
@@ -25,6 +29,7 @@ struct StepSegment {
   uint8_t wraps;          // periods before the final one
   uint8_t axes;           // which axes step
   uint8_t dirs;           // forward bits
+  uint8_t chain;          // see the contract
 
   // Splits `interval` ticks (1 .. kMaxSegmentInterval) into wraps + 1 timer
   // periods of near-equal length. Equal periods, rather than full 65536-tick
@@ -40,6 +45,7 @@ struct StepSegment {
     s.compare = uint16_t(interval - s.wraps * period - 1);
     s.axes = axes;
     s.dirs = dirs;
+    s.chain = 0;
     return s;
   }
   uint32_t interval() const { return uint32_t(wraps) * (wrap_compare + 1u) + compare + 1u; }
@@ -71,6 +77,9 @@ class StepQueue {
 
   // Consumer side: the oldest segment, valid while !empty().
   StepSegment& front() { return slots_[tail_ & (Size - 1)]; }
+  uint8_t tail() const { return tail_; }
+  // The slot that ring index `index` (any value; it wraps) refers to.
+  const StepSegment* slot(uint8_t index) const { return &slots_[index & (Size - 1)]; }
   void pop() { tail_ = uint8_t(tail_ + 1); }
   // pop(), then the next front, or nullptr when that emptied the queue: one
   // read of each index, for the step interrupt's segment change.

@@ -22,11 +22,17 @@ using hal::Pin;
 using Axes = AxisSet<StepDirAxis<'Z', Pin<'C', 0>, Pin<'C', 1>, Pin<'C', 7>, true, 62992>,
                      UnipolarAxis<'U', Pin<'C', 2>, Pin<'C', 3>, Pin<'C', 4>, Pin<'C', 5>, 4096>>;
 
-constexpr uint32_t kBaud = 115200;
+// 115200 at 16 MHz (UBRR 16 with U2X: 117647 baud, +2.1 %); at 8 MHz the
+// nearest divisor for 115200 gives 111111 (-3.5 %, outside the datasheet's
+// recommended +-2 %), so the 8 MHz image talks at 38400 (38462, +0.2 %).
+constexpr uint32_t kBaud = F_CPU >= 16000000UL ? 115200 : 38400;
 constexpr uint32_t kStepTimerHz = F_CPU;
 constexpr uint32_t kMaxStepRate = F_CPU / 800;  // 20 kHz at 16 MHz, 10 kHz at 8 MHz
 constexpr uint32_t kDefaultRate = 1000;
 constexpr uint32_t kDefaultAccel = 4000;
+// Fastest ramp the planner keeps ahead of (tests/sim/test_invariants.cpp;
+// docs/step-engine.md).
+constexpr uint32_t kMaxAccel = 800000;  // steps/s^2
 constexpr uint8_t kStepPulsePadCycles = F_CPU / 1000000 * 3 / 2;  // >= 1.9 us with bookkeeping
 constexpr uint8_t kTimerPulseCycles = 0;  // no timer-pulsed axis
 

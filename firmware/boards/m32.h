@@ -28,6 +28,9 @@ constexpr uint32_t kStepTimerHz = F_CPU;
 constexpr uint32_t kMaxStepRate = 40000;
 constexpr uint32_t kDefaultRate = 4000;    // steps/s (4 mm/s)
 constexpr uint32_t kDefaultAccel = 20000;  // steps/s^2
+// Fastest ramp the planner keeps ahead of, with any axis at 40 kHz
+// (tests/sim/test_invariants.cpp; docs/step-engine.md).
+constexpr uint32_t kMaxAccel = 800000;  // steps/s^2
 constexpr uint8_t kStepPulsePadCycles = 24;  // >= 1.9 us with the bookkeeping (DRV8825)
 constexpr uint8_t kTimerPulseCycles = 0;  // no timer-pulsed axis
 

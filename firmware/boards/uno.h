@@ -35,6 +35,11 @@ constexpr uint32_t kStepTimerHz = F_CPU;
 constexpr uint32_t kMaxStepRate = 20000;
 constexpr uint32_t kDefaultRate = 400;   // steps/s
 constexpr uint32_t kDefaultAccel = 800;  // steps/s^2
+// Fastest ramp the planner keeps ahead of with the Z axis at 160 kHz, where
+// the step interrupt leaves the main loop a third of the CPU: 560000 was
+// still exact, 800000 starved (tests/sim/test_invariants.cpp,
+// docs/step-engine.md).
+constexpr uint32_t kMaxAccel = 400000;  // steps/s^2
 constexpr uint8_t kStepPulsePadCycles = 0;  // coils, not pulses: no width to meet
 constexpr uint8_t kTimerPulseCycles = 32;  // 2 us: A4988, DRV8825 (1.9 us) and TMC drivers
 

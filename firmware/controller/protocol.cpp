@@ -41,9 +41,17 @@ const char* parse_error_text(am::ParseError e) {
     case am::ParseError::missing_axis: return PSTR("MOVE needs an axis word");
     case am::ParseError::two_axes: return PSTR("MOVE takes one axis");
     case am::ParseError::unexpected_word: return PSTR("word not allowed here");
-    case am::ParseError::bad_mode: return PSTR("mode must be 0, 1, 2, 16, 32 or 64");
-    default: return PSTR("empty line");
+    default:  // bad_mode (none and empty never come here)
+      return PSTR("mode must be 0, 1, 2, 16, 32 or 64");
   }
+}
+
+void warn_clamped(char word, uint32_t value) {
+  hal::uart::write_P(PSTR("warning: "));
+  hal::uart::write(uint8_t(word));
+  hal::uart::write_P(PSTR(" clamped to "));
+  hal::uart::write_u32(value);
+  hal::uart::write('\n');
 }
 
 bool motion_done() { return planner::idle() && !engine::busy(); }
@@ -75,14 +83,18 @@ constexpr int32_t kMaxMoveSteps = 16777216;
 bool execute(const am::Command& c) {
   switch (c.kind) {
     case am::CommandKind::move: {
-      if (!planner::idle()) return false;
       const int8_t axis = board::Axes::index_of(c.axis);
       if (axis < 0) {
         error(PSTR("no such axis on this board"));
         return true;
       }
+      if (!planner::ready_for(uint8_t(axis))) return false;
       if (c.steps > kMaxMoveSteps || c.steps < -kMaxMoveSteps) {
         error(PSTR("move too long (max 16777216 steps)"));
+        return true;
+      }
+      if (!planner::fits(uint8_t(axis), c.steps)) {
+        error(PSTR("move would leave the position range"));
         return true;
       }
       am::RampConfig cfg{board::kStepTimerHz,
@@ -96,14 +108,10 @@ bool execute(const am::Command& c) {
         case am::RampError::rate_above_tick: error(PSTR("speed above the timer clock")); return true;
         case am::RampError::out_of_range: error(PSTR("acceleration too low for the timer")); return true;
       }
-      const uint32_t own_limit = board::Axes::max_rate_at(uint8_t(axis));
-      const uint32_t limit = own_limit ? own_limit : board::kMaxStepRate;
-      if (cfg.max_rate > limit) {
-        cfg.max_rate = limit;
-        hal::uart::write_P(PSTR("warning: F clamped to "));
-        hal::uart::write_u32(limit);
-        hal::uart::write('\n');
-      }
+      const uint8_t clamped = planner::clamp(uint8_t(axis), cfg);
+      if (clamped & planner::kClampedRate) warn_clamped('F', cfg.max_rate);
+      if (clamped & planner::kClampedAccel) warn_clamped('A', cfg.accel);
+      if (clamped & planner::kClampedDecel) warn_clamped('D', cfg.decel);
       if (c.steps != 0) planner::start(uint8_t(axis), c.steps, cfg);
       ok();
       return true;
@@ -149,10 +157,14 @@ void on_line(Reader::Line line) {
     error(PSTR("serial overrun, line dropped"));
   } else if (line == Reader::Line::too_long) {
     error(PSTR("line too long (max 80 characters)"));
+  } else if (line == Reader::Line::bad_byte) {
+    error(PSTR("control or non-ASCII byte in line"));
   } else {
     const am::ParseError e = am::parse_command(reader.text(), command);
     if (e == am::ParseError::none) {
       waiting = true;
+    } else if (e == am::ParseError::empty) {
+      ok();  // spaces and tabs only: nothing to do, but every line is answered
     } else {
       error(parse_error_text(e));
     }

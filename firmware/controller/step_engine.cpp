@@ -22,10 +22,8 @@ constexpr uint8_t kPulsePadTurns =
 // The layout facts the assembly below relies on.
 static_assert(offsetof(am::StepSegment, count) == 0, "segment layout");
 static_assert(offsetof(am::StepSegment, compare) == 2, "segment layout");
-static_assert(offsetof(am::StepSegment, wraps) == 6, "segment layout");
-static_assert(offsetof(am::StepSegment, axes) == 7, "segment layout");
-static_assert(offsetof(am::StepSegment, dirs) == 8, "segment layout");
-static_assert(sizeof(am::StepSegment) == 9, "segment layout: the fast path multiplies by 9");
+static_assert(offsetof(am::StepSegment, chain) == 9, "segment layout");
+static_assert(sizeof(am::StepSegment) == 10, "segment layout: the fast path steps by 10");
 static_assert(Queue::slots_offset() == 0, "queue layout");
 
 }  // namespace
@@ -33,11 +31,17 @@ static_assert(Queue::slots_offset() == 0, "queue layout");
 
 // Shared with the assembly fast path, hence assembler names.
 engine::Queue step_queue asm("step_queue");
-volatile uint16_t step_remaining asm("step_remaining");  // steps left in the current segment
-volatile uint16_t step_compare asm("step_compare");      // its (final-period) compare value
-volatile uint8_t step_dirs asm("step_dirs");             // its direction bits
-volatile uint8_t step_fast asm("step_fast");             // the fast path may take the next match
-volatile uint8_t step_armed asm("step_armed");           // the next match raises the timer STEP
+// Steps of the current segment after the one the next match makes.
+volatile uint16_t step_remaining asm("step_remaining");
+volatile uint8_t step_dirs asm("step_dirs");  // the current segment's direction bits
+// Who takes the next match: 0 the C handler; 1 the fast path, a step with
+// more to follow; 2 the fast path, the segment's last step.
+volatile uint8_t step_fast asm("step_fast");
+volatile uint8_t step_armed asm("step_armed");  // the next match raises the timer STEP
+// The ring index after the current segment and its slot, kept ready so the
+// fast path's segment switch reads no index arithmetic before its compare.
+volatile uint8_t step_next_index asm("step_next_index");
+const am::StepSegment* volatile step_next asm("step_next");
 
 namespace engine {
 namespace {
@@ -46,21 +50,22 @@ volatile bool running;
 
 // The rest of the segment being executed, copied out of the queue so the
 // C handler reads fixed addresses instead of indexing the ring.
+uint16_t step_compare;
 uint16_t wrap_compare;
 uint8_t wraps;
 uint8_t wraps_left;
 uint8_t axes;
 
-// A segment the fast path can run and switch to by itself: the timer-pulsed
-// axis alone, one timer period per step.
+// The last segment pushed (main loop only), for the chain mark.
+uint8_t pushed_axes;
+uint8_t pushed_dirs;
+
+// A segment the fast path can run: the timer-pulsed axis alone, one timer
+// period per step.
 inline bool fast_eligible(const am::StepSegment& s) {
   return kTimerAxes != 0 && s.axes == kTimerAxes && s.wraps == 0;
 }
 
-// Programs the first timer period of a segment: the hardware pulse if that
-// period ends in a step of the timer-pulsed axis, and its compare value.
-// This comes before anything else at a segment change, because at 150 kHz
-// the new period's match is barely 100 cycles away.
 // Arms the hardware pulse for the period just programmed, or leaves OC1A to
 // "clear" (rewritten only when that changes the state).
 inline void set_armed(bool armed) {
@@ -69,9 +74,18 @@ inline void set_armed(bool armed) {
   step_armed = armed;
 }
 
+// Programs the first timer period of a segment: the hardware pulse if that
+// period ends in a step of the timer-pulsed axis, and its compare value.
 inline uint16_t first_period(const am::StepSegment& s) {
   if (kTimerAxes) set_armed(s.wraps == 0 && (s.axes & kTimerAxes));
   return s.wraps ? s.wrap_compare : s.compare;
+}
+
+// Points the fast path's look-ahead at the segment after the front.
+inline void track_next() {
+  const uint8_t next = uint8_t(step_queue.tail() + 1);
+  step_next_index = next;
+  step_next = step_queue.slot(next);
 }
 
 // Copies the queue's front segment into the fields the interrupt reads and
@@ -79,15 +93,16 @@ inline uint16_t first_period(const am::StepSegment& s) {
 // whose first interval is long, so setting them after the period has been
 // programmed still leaves the drivers their set-up time.
 inline void load_front(const am::StepSegment& s) {
-  step_remaining = s.count;
+  step_remaining = uint16_t(s.count - 1);
   step_compare = s.compare;
   wrap_compare = s.wrap_compare;
   wraps = s.wraps;
   wraps_left = wraps;
   axes = s.axes;
   step_dirs = s.dirs;
-  step_fast = fast_eligible(s);
+  step_fast = fast_eligible(s) ? (s.count == 1 ? 2 : 1) : 0;
   board::Axes::set_direction(s.axes, s.dirs);
+  track_next();
 }
 
 // The queue ran dry: stop the clock first (a pulse may be armed), then reset.
@@ -125,138 +140,137 @@ bool queue_full() { return step_queue.full(); }
 
 bool busy() { return running || !step_queue.empty(); }
 
-bool push(const am::StepSegment& segment) {
-  if (!step_queue.push(segment)) return false;
-  // The interrupt clears `running` only after it found the queue empty, so if
-  // it is still set here the interrupt will see this segment.
-  if (!running) {
-    running = true;
-    const am::StepSegment& s = step_queue.front();
-    const uint16_t first = first_period(s);
-    load_front(s);
-    hal::step_timer::start(first);
-  }
+bool push(am::StepSegment segment) {
+  if (step_queue.full()) return false;
+  // The fast path switches to a segment by itself only where it continues
+  // the one before it: same (timer-pulsed) axis, same direction.
+  segment.chain = fast_eligible(segment) && segment.axes == pushed_axes && segment.dirs == pushed_dirs;
+  pushed_axes = segment.axes;
+  pushed_dirs = segment.dirs;
+  step_queue.push(segment);
   return true;
+}
+
+void start() {
+  // The interrupt clears `running` only after it found the queue empty, so if
+  // it is still set here the interrupt will see every segment pushed.
+  if (running || step_queue.empty()) return;
+  running = true;
+  const am::StepSegment& s = step_queue.front();
+  const uint16_t first = first_period(s);
+  load_front(s);
+  hal::step_timer::start(first);
 }
 
 }  // namespace engine
 
-// The compare-A vector. Steady cruise of the timer-pulsed axis is the hot
-// path and is written in assembly: ending the pulse (after the board's pulse
-// width), re-arming it and counting take 54 cycles plus the padding,
-// including the interrupt response and RETI, where a C
-// handler would spend more than that saving and restoring the 17 registers
-// its calls may clobber. At a segment's last step it reads the next segment
-// straight from the ring and, if that one continues the same axis in the
-// same direction with no long interval, switches to it in about 40 more
-// cycles (at 150 kHz the next match is only 107 cycles away). Every other
-// case restores the registers it used and jumps to a C handler, which then
-// runs exactly as if it were the vector.
+// The compare-A vector. Cycle counts are from the match: 4 of interrupt
+// response and 3 of the vector table's JMP come first. Steady cruise of the
+// timer-pulsed axis is the hot path and is written in assembly: ending the
+// pulse (after the board's pulse width), re-arming it and counting, where a
+// C handler would spend more than that saving and restoring the 17 registers
+// its calls may clobber. At a segment's last step it takes the next segment
+// straight from the ring if that one is marked `chain` (it continues the same
+// axis in the same direction with no long interval): the new compare lands
+// 69 cycles after the match on the Uno (2 us pulse), 31 before the next
+// match at 160 kHz. Every other case restores the registers it used and
+// jumps to a C handler, which then runs exactly as if it were the vector.
 ISR(TIMER1_COMPA_vect, ISR_NAKED) {
   asm volatile(
-      "push r24\n\t"
-      "in r24, __SREG__\n\t"
-      "push r24\n\t"
+      "push r24\n\t"                    // 2   9
+      "in r24, __SREG__\n\t"            // 1  10
+      "push r24\n\t"                    // 2  12
       // A match that raised STEP: end the pulse now, whatever comes next.
-      "lds r24, step_armed\n\t"
-      "tst r24\n\t"
-      "breq 3f\n\t"
-      "ldi r24, %[clear]\n\t"
-      "sts %[tccr1a], r24\n\t"
+      "lds r24, step_armed\n\t"         // 2  14
+      "tst r24\n\t"                     // 1  15
+      "breq 3f\n\t"                     // 1  16
+      "ldi r24, %[clear]\n\t"           // 1  17
+      "sts %[tccr1a], r24\n\t"          // 2  19
       ".if %[pad]\n\t"
-      "ldi r24, %[pad]\n\t"
-      "9: dec r24\n\t"
-      "brne 9b\n\t"
+      "ldi r24, %[pad]\n\t"             // 1
+      "9: dec r24\n\t"                  // 1
+      "brne 9b\n\t"                     // 2, 1 on the last turn: 3 per turn
       ".endif\n\t"
-      "ldi r24, %[force]\n\t"
-      "sts %[force_reg], r24\n\t"
+      "ldi r24, %[force]\n\t"           // 1
+      "sts %[force_reg], r24\n\t"       // 2  22 + 3 pad: the pulse ends (35 on the Uno)
       "3:\n\t"
-      "lds r24, step_fast\n\t"
-      "tst r24\n\t"
-      "brne 8f\n\t"
+      "lds r24, step_fast\n\t"          // 2
+      "cpi r24, 1\n\t"                  // 1
+      "breq 2f\n\t"                     // 1 / 2 taken: a step with more to follow
+      "brcc 4f\n\t"                     // 1 / 2 taken: the segment's last step
       "pop r24\n\t"
       "out __SREG__, r24\n\t"
       "pop r24\n\t"
       "jmp __vector_step_slow\n\t"
-      "8:\n\t"
-      "lds r24, step_remaining\n\t"
-      "cpi r24, 1\n\t"
-      "brne 2f\n\t"
-      "lds r24, step_remaining+1\n\t"
-      "tst r24\n\t"
-      "breq 4f\n\t"
-      // Another step of this segment: re-arm and count.
+      // Another step of this segment follows: re-arm and count.
       "2:\n\t"
-      "ldi r24, %[set]\n\t"
-      "sts %[tccr1a], r24\n\t"
-      "lds r24, step_remaining\n\t"
-      "subi r24, 1\n\t"
-      "sts step_remaining, r24\n\t"
-      "lds r24, step_remaining+1\n\t"
-      "sbci r24, 0\n\t"
-      "sts step_remaining+1, r24\n\t"
+      "ldi r24, %[set]\n\t"             // 1
+      "sts %[tccr1a], r24\n\t"          // 2
+      "lds r24, step_remaining\n\t"     // 2
+      "subi r24, 1\n\t"                 // 1
+      "sts step_remaining, r24\n\t"     // 2
+      "lds r24, step_remaining+1\n\t"   // 2
+      "sbci r24, 0\n\t"                 // 1  Z: the 16-bit result is 0
+      "sts step_remaining+1, r24\n\t"   // 2
+      "brne 5f\n\t"                     // 1 / 2
+      "ldi r24, 2\n\t"                  // 1  the next match is the last step
+      "sts step_fast, r24\n\t"          // 2
       "5:\n\t"
-      "pop r24\n\t"
-      "out __SREG__, r24\n\t"
-      "pop r24\n\t"
-      "reti\n\t"
-      // The segment's last step. Arm the next pulse at once: a fast segment
-      // is followed by more steps of the same axis (moves end at rest, with
-      // long intervals), and the C handler disarms in the rare other case
-      // long before a slow interval ends.
+      "pop r24\n\t"                     // 2
+      "out __SREG__, r24\n\t"           // 1
+      "pop r24\n\t"                     // 2
+      "reti\n\t"                        // 4
+      // The segment's last step (41 on the Uno).
       "4:\n\t"
-      "ldi r24, %[set]\n\t"
-      "sts %[tccr1a], r24\n\t"
-      "push r23\n\t"
-      "push r25\n\t"
-      "push r30\n\t"
-      "push r31\n\t"
-      "lds r24, step_queue+%[tail]\n\t"
-      "subi r24, 0xFF\n\t"  // r24 = index of the next segment
-      "lds r25, step_queue+%[head]\n\t"
-      "cp r24, r25\n\t"
-      "breq 7f\n\t"
-      "mov r30, r24\n\t"
-      "andi r30, %[mask]\n\t"
-      "mov r25, r30\n\t"
-      "lsl r30\n\t"
-      "lsl r30\n\t"
-      "lsl r30\n\t"
-      "add r30, r25\n\t"  // slot * 9 (<= 135)
-      "ldi r31, 0\n\t"
-      "subi r30, lo8(-(step_queue))\n\t"
-      "sbci r31, hi8(-(step_queue))\n\t"
-      "ldd r25, Z+6\n\t"  // wraps == 0
-      "tst r25\n\t"
-      "brne 7f\n\t"
-      "ldd r25, Z+7\n\t"  // axes == the timer-pulsed axis alone
-      "cpi r25, %[timer_axes]\n\t"
-      "brne 7f\n\t"
-      "ldd r25, Z+8\n\t"  // same direction
-      "lds r23, step_dirs\n\t"
-      "cp r25, r23\n\t"
-      "brne 7f\n\t"
-      "ldd r25, Z+3\n\t"
-      "sts %[ocr1ah], r25\n\t"
-      "sts step_compare+1, r25\n\t"
-      "ldd r25, Z+2\n\t"
-      "sts %[ocr1al], r25\n\t"
-      "sts step_compare, r25\n\t"
-      "ldd r25, Z+0\n\t"
-      "sts step_remaining, r25\n\t"
-      "ldd r25, Z+1\n\t"
-      "sts step_remaining+1, r25\n\t"
-      "sts step_queue+%[tail], r24\n\t"  // pop the finished segment
-      "pop r31\n\t"
-      "pop r30\n\t"
-      "pop r25\n\t"
-      "pop r23\n\t"
-      "rjmp 5b\n\t"
+      "push r25\n\t"                    // 2  43
+      "push r30\n\t"                    // 2  45
+      "push r31\n\t"                    // 2  47
+      "lds r24, step_next_index\n\t"    // 2  49
+      "lds r25, step_queue+%[head]\n\t" // 2  51
+      "cp r24, r25\n\t"                 // 1  52
+      "breq 7f\n\t"                     // 1  53  nothing queued
+      "lds r30, step_next\n\t"          // 2  55
+      "lds r31, step_next+1\n\t"        // 2  57
+      "ldd r25, Z+9\n\t"                // 2  59  chain
+      "tst r25\n\t"                     // 1  60
+      "breq 7f\n\t"                     // 1  61
+      "ldd r25, Z+3\n\t"                // 2  63
+      "sts %[ocr1ah], r25\n\t"          // 2  65
+      "ldd r25, Z+2\n\t"                // 2  67
+      "sts %[ocr1al], r25\n\t"          // 2  69  the new period is set
+      "ldi r25, %[set]\n\t"             // 1
+      "sts %[tccr1a], r25\n\t"          // 2  its pulse is armed
+      "sts step_queue+%[tail], r24\n\t" // 2  pop the finished segment
+      "subi r24, 0xFF\n\t"              // 1
+      "sts step_next_index, r24\n\t"    // 2
+      "ldd r24, Z+0\n\t"                // 2
+      "ldd r25, Z+1\n\t"                // 2
+      "sbiw r24, 1\n\t"                 // 2  count - 1, Z: a one-step segment
+      "sts step_remaining, r24\n\t"     // 2
+      "sts step_remaining+1, r25\n\t"   // 2
+      "ldi r24, 1\n\t"                  // 1
+      "brne 6f\n\t"                     // 1 / 2
+      "ldi r24, 2\n\t"                  // 1
+      "6:\n\t"
+      "sts step_fast, r24\n\t"          // 2
+      "adiw r30, %[slot]\n\t"           // 2  the slot after the new segment
+      "cpi r30, lo8(step_queue+%[ring])\n\t"  // 1
+      "ldi r25, hi8(step_queue+%[ring])\n\t"  // 1
+      "cpc r31, r25\n\t"                // 1
+      "brne 1f\n\t"                     // 1 / 2
+      "ldi r30, lo8(step_queue)\n\t"    // 1
+      "ldi r31, hi8(step_queue)\n\t"    // 1
+      "1:\n\t"
+      "sts step_next, r30\n\t"          // 2
+      "sts step_next+1, r31\n\t"        // 2
+      "pop r31\n\t"                     // 2
+      "pop r30\n\t"                     // 2
+      "pop r25\n\t"                     // 2
+      "rjmp 5b\n\t"                     // 2
       "7:\n\t"
       "pop r31\n\t"
       "pop r30\n\t"
       "pop r25\n\t"
-      "pop r23\n\t"
       "pop r24\n\t"
       "out __SREG__, r24\n\t"
       "pop r24\n\t"
@@ -265,16 +279,17 @@ ISR(TIMER1_COMPA_vect, ISR_NAKED) {
       [force_reg] "n"(_SFR_MEM_ADDR(HAL_FORCE_OC1A_REG)), [force] "n"(HAL_FORCE_OC1A_VALUE),
       [clear] "n"(hal::step_timer::kOc1aClear), [set] "n"(hal::step_timer::kOc1aSet),
       [head] "n"(engine::Queue::head_offset()), [tail] "n"(engine::Queue::tail_offset()),
-      [mask] "n"(engine::kQueueSize - 1), [timer_axes] "n"(engine::kTimerAxes),
+      [slot] "n"(sizeof(am::StepSegment)), [ring] "n"(sizeof(am::StepSegment) * engine::kQueueSize),
       [pad] "n"(engine::kPulsePadTurns));
 }
 
 // The end of a timer-only segment that the vector could not continue: the
-// queue holds nothing more (a stop, or the planner fell behind) or the next
-// segment is of another kind. The next pulse is already armed, so one thing
-// is urgent: the stop, or the new compare value, must land before the old
-// compare matches again, about 100 cycles away at 150 kHz. No software pulses
-// and no calls here, so the prologue saves few registers.
+// queue holds nothing more (a stop) or the next segment is not marked
+// `chain` (another move, which starts from rest). The pulse is not armed;
+// the stop, or the new compare value, must land before the old compare
+// matches again: the last interval of a deceleration, thousands of cycles
+// within the board's acceleration limit. No software pulses and no calls
+// here, so the prologue saves few registers.
 extern "C" void __vector_step_switch() __attribute__((signal, used, externally_visible));
 void __vector_step_switch() { engine::next_segment(); }
 
@@ -297,7 +312,8 @@ void __vector_step_slow() {
     return;
   }
   board::Axes::pulse_begin(axes, step_dirs);
-  if (--step_remaining != 0) {
+  if (step_remaining != 0) {
+    step_remaining = uint16_t(step_remaining - 1);
     wraps_left = wraps;
     hal::step_timer::set_compare(wraps ? wrap_compare : step_compare);
     arm_if_step_period();

@@ -3,9 +3,10 @@
 //
 // Contract
 //   The main loop pushes segments with push() (false = queue full, try again
-//   later) and never touches the timer; the engine starts itself on the first
-//   push after it went idle and stops itself when the queue runs dry. busy() is
-//   true while steps remain. The interrupt only pops segments; it never
+//   later) and never touches the timer. start() sets an idle engine going on
+//   what has been queued (the planner fills the queue first, so a move's first
+//   steps never wait for the planner); the engine stops itself when the queue
+//   runs dry. busy() is true while steps remain. The interrupt only pops segments; it never
 //   computes a ramp: that happens in the planner, outside interrupt context.
 //
 // Why it is built this way
@@ -30,7 +31,8 @@ namespace engine {
 constexpr uint8_t kQueueSize = 16;
 
 void init();
-bool push(const am::StepSegment& segment);
+bool push(am::StepSegment segment);
+void start();
 bool busy();
 bool queue_full();
 

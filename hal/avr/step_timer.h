@@ -32,7 +32,12 @@ inline void start(uint16_t compare) {
   TCCR1B = _BV(WGM12) | _BV(CS10);
 }
 
-inline void stop() { TCCR1B = _BV(WGM12); }
+// Stops the clock and drops a match that raised the flag meanwhile: left
+// pending, it would enter the step vector once more with nothing to step.
+inline void stop() {
+  TCCR1B = _BV(WGM12);
+  HAL_TIMER1_FLAGS = _BV(OCF1A);
+}
 
 inline void set_compare(uint16_t compare) { OCR1A = compare; }
 

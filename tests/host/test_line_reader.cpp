@@ -39,3 +39,29 @@ TEST(LineReader, EmptyLinesAreSkipped) {
   Reader r;
   EXPECT_EQ(feed(r, "\n\n\r\n"), Reader::Line::none);
 }
+
+TEST(LineReader, EveryByteOutsidePrintableAsciiRefusesTheWholeLine) {
+  // Every byte value at the start, in the middle and at the end of a line:
+  // printable ASCII and TAB make a line, anything else refuses it whole.
+  for (int b = 0; b < 256; ++b) {
+    if (b == '\n' || b == '\r') continue;
+    const bool allowed = (b >= 0x20 && b < 0x7F) || b == '\t';
+    for (const std::string& line : {std::string(1, char(b)) + "ab", "a" + std::string(1, char(b)) + "b",
+                                    "ab" + std::string(1, char(b))}) {
+      Reader r;
+      EXPECT_EQ(feed(r, line + "\n"), allowed ? Reader::Line::ready : Reader::Line::bad_byte) << "byte " << b;
+      if (allowed) {
+        EXPECT_EQ(std::string(r.text()), line);
+      }
+      // The line after it is whole again.
+      EXPECT_EQ(feed(r, "ok\n"), Reader::Line::ready);
+      EXPECT_STREQ(r.text(), "ok");
+    }
+  }
+}
+
+TEST(LineReader, AnOverlongLineWithABadByteIsTooLong) {
+  Reader r;
+  EXPECT_EQ(feed(r, std::string("1234") + '\0' + "56789\n"), Reader::Line::too_long);
+  EXPECT_EQ(feed(r, std::string("12") + '\0' + "\n"), Reader::Line::bad_byte);
+}

@@ -42,11 +42,15 @@ TEST(RampSeedVectors, FirstDelayIs16940_51us) {
 }
 
 // SpeedRamp keeps c in Q8 and carries the division remainder from one
-// denominator to the next: every one of the 71 rounded delays is the table's.
+// denominator to the next: every one of the 70 accelerating delays is the
+// table's. The table's last row is its first delay below the 1500 us limit;
+// SpeedRamp never runs faster than the limit, so that step takes 1500 us.
 TEST(RampSeedVectors, SeventyOneRoundedDelaysExactly) {
   const std::vector<uint32_t> delays = run_move(400);
   ASSERT_EQ(delays.size(), 400u);
-  for (int n = 0; n <= 70; ++n) EXPECT_EQ(delays[n], uint32_t(appendix_delays[n])) << "n=" << n;
+  for (int n = 0; n < 70; ++n) EXPECT_EQ(delays[n], uint32_t(appendix_delays[n])) << "n=" << n;
+  EXPECT_LT(appendix_delays[70], 1500);
+  EXPECT_EQ(delays[70], 1500u);
 }
 
 TEST(RampSeedVectors, TableRowsTimesRpmAndRates) {
@@ -54,7 +58,7 @@ TEST(RampSeedVectors, TableRowsTimesRpmAndRates) {
   struct Row { int n; double end_s; int rpm; int rate; };
   const Row rows[] = {{0, 0.01694, 18, 59},   {1, 0.02710, 30, 98},   {5, 0.05294, 56, 187},
                       {10, 0.07466, 78, 259}, {20, 0.10638, 108, 361}, {50, 0.17050, 170, 567},
-                      {69, 0.20120, 200, 665}, {70, 0.20270, 201, 670}};
+                      {69, 0.20120, 200, 665}, {70, 0.20270, 200, 667}};  // the table: 201 rpm, 670 Hz
   double t = 0;
   int n = 0;
   for (const Row& row : rows) {
@@ -74,7 +78,7 @@ TEST(RampSeedVectors, TableRowsTimesRpmAndRates) {
 
 TEST(RampSeedVectors, FourHundredStepMove) {
   const std::vector<uint32_t> delays = run_move(400);
-  for (int n = 71; n < 330; ++n) EXPECT_EQ(delays[n], 1492u) << n;
+  for (int n = 70; n < 330; ++n) EXPECT_EQ(delays[n], 1500u) << n;  // the table's cruise: 1492
   EXPECT_EQ(delays[330], 1503u);  // deceleration starts at step 330
   // The backward recurrence is the exact inverse of the forward one, so the
   // last two delays return to c1 = 10164.31 and c0 = 16940.51 (Appendix 1's
@@ -86,7 +90,9 @@ TEST(RampSeedVectors, FourHundredStepMove) {
   EXPECT_NEAR(double(delays[399]), 16937, 4.0);
   double total = 0;
   for (uint32_t d : delays) total += d / tick_hz;
-  EXPECT_NEAR(total, 0.79028, 0.0001);
+  // The table's 0.79028 s, plus the 8 us by which each of the 260 cruise
+  // steps (70..329) is held at the limit.
+  EXPECT_NEAR(total, 0.79028 + 260 * 8e-6, 0.0001);
 }
 
 TEST(RampSeedVectors, AccelerationCheckFromConsecutiveDelays) {

@@ -38,16 +38,52 @@ TEST(SpeedRamp, AccelerationFollowsTheRecurrence) {
   }
 }
 
-TEST(SpeedRamp, CruiseHoldsTheFirstDelayBelowTheLimit) {
+TEST(SpeedRamp, CruiseRunsAtTheLimitAndNothingRunsFaster) {
   const std::vector<uint32_t> c = intervals(5000, kCfg);
   const uint32_t c_min = 16000000 / 4000;
-  size_t first_below = 0;
-  while (first_below < c.size() && c[first_below] >= c_min) ++first_below;
-  ASSERT_LT(first_below + 100, c.size());
-  // Accelerating delays are all >= the limit, then one value is held.
-  for (size_t i = first_below; i < first_below + 100; ++i) EXPECT_EQ(c[i], c[first_below]);
+  size_t first_at = 0;
+  while (first_at < c.size() && c[first_at] > c_min) ++first_at;
+  ASSERT_LT(first_at + 100, c.size());
+  for (size_t i = first_at; i < first_at + 100; ++i) EXPECT_EQ(c[i], c_min);
+  for (uint32_t d : c) EXPECT_GE(d, c_min);
   // v^2 / (2a) = 1000 steps nominal; the 0.676 start shifts it a little.
-  EXPECT_NEAR(double(first_below), 1000.0, 5.0);
+  EXPECT_NEAR(double(first_at), 1000.0, 5.0);
+}
+
+TEST(SpeedRamp, NoIntervalShorterThanTheRateAllowsForAnyAcceleration) {
+  // Sweep rates (whole and fractional tick counts) and accelerations up to
+  // the 32-bit limit, per-step and batched: every interval is at least
+  // ceil(tick / rate), the move has exactly its steps, and a c0 below the
+  // cruise delay starts the move at the cruise delay.
+  for (uint32_t rate : {1u, 3u, 400u, 4000u, 40000u, 149999u, 150000u, 160000u, 1000000u}) {
+    for (uint32_t accel : {4u, 800u, 200000u, 20000000u, 1000000000u, 2147483647u}) {
+      for (uint32_t decel : {accel, 1612u}) {
+        for (uint32_t batch : {0u, 4000u}) {
+          const am::RampConfig cfg{16000000, rate, accel, decel};
+          if (am::SpeedRamp::check(cfg) != am::RampError::none) continue;
+          const uint32_t min_ticks = (16000000 + rate - 1) / rate;
+          // Long enough to reach the limit at the gentler rates, short enough
+          // to keep the test quick at 1 step/s.
+          for (uint32_t steps : {1u, 2u, 18u, 1000u}) {
+            am::SpeedRamp ramp;
+            ASSERT_EQ(ramp.plan(steps, cfg), am::RampError::none);
+            ramp.batch_below(batch);
+            uint32_t total = 0, first = 0;
+            for (am::StepRun r = ramp.next_run(); r.count; r = ramp.next_run()) {
+              if (total == 0) first = r.interval;
+              ASSERT_GE(r.interval, min_ticks) << rate << " " << accel << " " << decel << " " << steps;
+              total += r.count;
+            }
+            EXPECT_EQ(total, steps);
+            const double c0 = 0.676 * 16e6 * std::sqrt(2.0 / accel);
+            if (c0 < min_ticks) {
+              EXPECT_EQ(first, min_ticks) << rate << " " << accel;
+            }
+          }
+        }
+      }
+    }
+  }
 }
 
 TEST(SpeedRamp, DecelerationMirrorsAccelerationWhenRatesAreEqual) {
