@@ -3,23 +3,31 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <string>
 
 #include "machine.h"
 #include "plot.h"
+#include "progress.h"
 #include "report.h"
+#include "vcd.h"
 
 namespace {
 
 void usage() {
   std::cerr << "usage: avrmotion-sim (--board NAME | --elf FILE) [--input FILE|-] [--report FILE]\n"
-               "                     [--plot FILE.svg] [--max-seconds S] [--progress]\n"
-               "  --board NAME      run build/firmware/avrmotion-NAME.elf (uno, m32, m16, m16-8mhz)\n"
-               "  --input FILE      command lines to send (default: standard input); '#' starts a comment\n"
-               "  --report FILE     JSON report (default: standard output)\n"
-               "  --plot FILE.svg   picture of position against time\n"
-               "  --max-seconds S   simulated-time budget (default 120); exit 3 when spent\n"
+               "                     [--plot FILE.svg] [--vcd FILE.vcd [--vcd-signals LIST]]\n"
+               "                     [--max-seconds S] [--progress]\n"
+               "  --board NAME        run " AVRMOTION_FIRMWARE_DIR "/avrmotion-NAME.elf (uno, m32, m16, m16-8mhz)\n"
+               "  --input FILE        command lines to send (default: standard input); '#' starts a comment\n"
+               "  --report FILE       JSON report (default: standard output)\n"
+               "  --plot FILE.svg     pictures: per axis position, velocity, acceleration, step intervals\n"
+               "  --vcd FILE.vcd      trace of pins, interrupts and PWM duties for GTKWave\n"
+               "  --vcd-signals LIST  what the trace holds (default board,isr,pwm): board, isr, pwm,\n"
+               "                      an axis letter, a pin (PB3), a vector (isr11), a PWM channel (pwm2A)\n"
+               "  --max-seconds S     simulated-time budget (default 120); exit 3 when spent\n"
+               "  --progress          progress on standard error about once a second, and at the end\n"
                "exit: 0 ran to the end, 2 bad usage or image, 3 budget spent, 4 CPU stopped\n";
 }
 
@@ -33,7 +41,7 @@ std::string strip(const std::string& line) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string elf, input = "-", report, plot;
+  std::string elf, input = "-", report, plot, vcd, vcd_signals;
   double max_seconds = 120;
   bool progress = false;
   for (int i = 1; i < argc; ++i) {
@@ -50,6 +58,8 @@ int main(int argc, char** argv) {
     else if (a == "--input") input = value();
     else if (a == "--report") report = value();
     else if (a == "--plot") plot = value();
+    else if (a == "--vcd") vcd = value();
+    else if (a == "--vcd-signals") vcd_signals = value();
     else if (a == "--max-seconds") max_seconds = std::atof(value().c_str());
     else if (a == "--progress") progress = true;
     else {
@@ -57,13 +67,12 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  if (elf.empty() || max_seconds <= 0) {
+  if (elf.empty() || max_seconds <= 0 || (!vcd_signals.empty() && vcd.empty())) {
     usage();
     return 2;
   }
   try {
     sim::Machine machine(elf);
-    machine.set_progress(progress);
     std::ifstream file;
     if (input != "-") {
       file.open(input);
@@ -74,14 +83,18 @@ int main(int argc, char** argv) {
       const std::string s = strip(line);
       if (!s.empty()) machine.serial().add_line(s);
     }
-    const sim::RunEnd end = machine.run_script(uint64_t(max_seconds * machine.f_cpu()));
+    std::unique_ptr<sim::VcdRecorder> trace;
+    if (!vcd.empty()) trace.reset(new sim::VcdRecorder(machine, vcd, vcd_signals));
+    const sim::RunEnd end = sim::run_script_with_progress(machine, uint64_t(max_seconds * machine.f_cpu()),
+                                                          progress ? &std::cerr : nullptr);
+    if (trace) trace->finish();
     if (report.empty()) {
       sim::write_report(std::cout, machine, end);
     } else {
       std::ofstream out(report);
       sim::write_report(out, machine, end);
     }
-    if (!plot.empty()) sim::write_position_plot(plot, machine);
+    if (!plot.empty()) sim::write_run_plot(plot, machine, sim::PlotLabel{input == "-" ? "" : input, end});
     if (end == sim::RunEnd::budget_spent) {
       std::cerr << "avrmotion-sim: simulated-time budget of " << max_seconds << " s spent\n";
       return 3;

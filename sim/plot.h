@@ -1,5 +1,19 @@
-// A picture of a run: each axis's position against time, as an SVG file
-// (any browser shows it). One polyline per axis, sampled at every step event.
+// Pictures of a run, as one plain SVG file (any browser shows it; no plotting
+// library involved).
+//
+// One row of four panels per axis, each panel with its own scale:
+//   position (mm) | velocity (mm/s) | acceleration (mm/s^2)  against time (s)
+//   | a histogram of the axis's step intervals (us, log bins, log counts).
+// Velocity and acceleration are derived from the decoded step events as
+// sim/motion.h describes (a Gaussian window whose width is in the panel
+// titles). Ticks are 1-2-5 values (sim/ticks.h). Each axis keeps one colour
+// in all its panels; the palette has eight colours that stay distinct.
+//
+// For tests and tools the SVG is tagged: every panel is a <g class="panel"
+// data-axis="X" data-kind="position|velocity|acceleration|intervals">, every
+// data series carries class="series" and the same data-axis / data-kind,
+// tick labels are <text class="tick" data-dir="x|y"> and axis titles
+// <text class="axis-title">.
 #pragma once
 #include <string>
 
@@ -7,6 +21,15 @@
 
 namespace sim {
 
-void write_position_plot(const std::string& path, const Machine& m);
+// Colours of the series, in order: eight, pairwise distinct.
+constexpr int kPaletteSize = 8;
+const char* palette_colour(int series);
+
+struct PlotLabel {
+  std::string input;  // shown in the title (the command file's name), may be empty
+  RunEnd end = RunEnd::done;
+};
+
+void write_run_plot(const std::string& path, Machine& m, const PlotLabel& label = PlotLabel());
 
 }  // namespace sim

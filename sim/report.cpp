@@ -38,7 +38,27 @@ const char* end_name(RunEnd end) {
   }
 }
 
+size_t lines_answered(const SerialHost& serial) {
+  size_t n = 0;
+  for (const Response& r : serial.responses()) n += !r.answer.empty();
+  return n;
+}
+
 }  // namespace
+
+std::string progress_line(Machine& m) {
+  const SerialHost& serial = m.serial();
+  const size_t input = serial.lines_sent() + serial.lines_pending();
+  const size_t answered = lines_answered(serial), ok = serial.lines_ok(), errors = answered - ok;
+  const unsigned percent = input ? unsigned(answered * 100 / input) : 100;
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "avrmotion-sim: %s s simulated, %zu of %zu lines sent, %zu answered (%zu ok, %zu error%s), "
+                "%u%% of the input",
+                number(double(m.cycles()) / m.f_cpu()).c_str(), serial.lines_sent(), input, answered, ok, errors,
+                errors == 1 ? "" : "s", percent);
+  return buf;
+}
 
 void write_report(std::ostream& out, Machine& m, RunEnd end) {
   const am::BoardDescriptor& b = m.board();
@@ -53,6 +73,8 @@ void write_report(std::ostream& out, Machine& m, RunEnd end) {
   out << "  \"banner\": " << quoted(serial.banner()) << ",\n";
   out << "  \"lines_sent\": " << serial.lines_sent() << ",\n";
   out << "  \"lines_ok\": " << serial.lines_ok() << ",\n";
+  out << "  \"lines_answered\": " << lines_answered(serial) << ",\n";
+  out << "  \"lines_input\": " << serial.lines_sent() + serial.lines_pending() << ",\n";
   out << "  \"errors\": [";
   const auto errors = serial.errors();
   for (size_t i = 0; i < errors.size(); ++i) out << (i ? ", " : "") << quoted(errors[i]);

@@ -2,11 +2,19 @@
 // docs/simulator-report.md and kept stable: tools and tests read them.
 #pragma once
 #include <ostream>
+#include <string>
 
 #include "machine.h"
 
 namespace sim {
 
 void write_report(std::ostream& out, Machine& m, RunEnd end);
+
+// The run's figures as one line, for --progress: the same simulated time
+// (the report's "seconds", same digits), lines sent / answered / ok / errors
+// and the share of the input answered, e.g.
+//   avrmotion-sim: 9.32043 s simulated, 9 of 9 lines sent, 9 answered (8 ok, 1 error), 100% of the input
+// Printed after the run, it says exactly what the report says.
+std::string progress_line(Machine& m);
 
 }  // namespace sim

@@ -39,6 +39,7 @@ class SerialHost {
   const std::vector<std::string>& received() const { return received_; }
   const std::vector<Response>& responses() const { return responses_; }
   size_t lines_sent() const { return lines_sent_; }
+  size_t lines_pending() const { return script_.size(); }  // added, not sent yet
   size_t lines_ok() const;
   std::vector<std::string> errors() const;
   // Lines that are neither the banner nor an answer (pos, warnings).
