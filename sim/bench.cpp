@@ -20,8 +20,8 @@
 #include <string>
 #include <vector>
 
-#include "core/speed_ramp.h"
 #include "machine.h"
+#include "schedule.h"
 
 namespace {
 
@@ -70,17 +70,6 @@ void load_script(sim::Machine& m, const Scenario& s) {
   for (int i = 0; i < 2400; ++i) m.serial().add_line("NOP");
 }
 
-// The planned schedule: what the firmware's planner computes for the move
-// (the same core code), with the clamps the firmware reported.
-std::vector<uint32_t> schedule(const Scenario& s, uint32_t f_cpu, uint32_t rate) {
-  am::SpeedRamp ramp;
-  ramp.plan(s.steps, am::RampConfig{f_cpu, rate, s.accel, s.accel});
-  ramp.batch_below(f_cpu / 4000);
-  std::vector<uint32_t> out;
-  for (am::StepRun r = ramp.next_run(); r.count; r = ramp.next_run()) out.insert(out.end(), r.count, r.interval);
-  return out;
-}
-
 bool failed = false;  // a run that did not end as it must: the benchmark fails
 
 Figures measure(const std::string& dir, const Scenario& s) {
@@ -104,7 +93,8 @@ Figures measure(const std::string& dir, const Scenario& s) {
   if (!f.ok || st.size() < 2) return f;
 
   // Every step of the whole move against the schedule, ramps included.
-  const std::vector<uint32_t> plan = schedule(s, m.f_cpu(), f.clamped_to ? f.clamped_to : s.rate);
+  const std::vector<uint32_t> plan =
+      sim::planned_schedule(s.steps, am::RampConfig{m.f_cpu(), f.clamped_to ? f.clamped_to : s.rate, s.accel, s.accel});
   const uint32_t fastest = *std::min_element(plan.begin() + 1, plan.end());
   uint64_t due = st[0], cruise_cycles = 0, cruise_steps = 0;
   int64_t lo = 0, hi = 0;

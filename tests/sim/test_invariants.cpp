@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "core/speed_ramp.h"
+#include "schedule.h"
 #include "sim_fixture.h"
 
 namespace {
@@ -46,11 +46,8 @@ uint64_t next_random(uint64_t& state) {
 }
 
 std::vector<uint32_t> schedule(uint32_t steps, const am::RampConfig& cfg) {
-  am::SpeedRamp ramp;
-  EXPECT_EQ(ramp.plan(steps, cfg), am::RampError::none);
-  ramp.batch_below(cfg.tick_hz / 4000);  // as firmware/controller/planner.cpp does
-  std::vector<uint32_t> out;
-  for (am::StepRun r = ramp.next_run(); r.count; r = ramp.next_run()) out.insert(out.end(), r.count, r.interval);
+  const std::vector<uint32_t> out = sim::planned_schedule(steps, cfg);
+  EXPECT_EQ(out.size(), steps);
   return out;
 }
 

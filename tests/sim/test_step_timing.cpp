@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "core/speed_ramp.h"
+#include "schedule.h"
 #include "sim_fixture.h"
 
 namespace {
@@ -12,22 +12,14 @@ namespace {
 constexpr int64_t kJitterBound = 12;    // cycles, peak to peak, software pulses
 constexpr int64_t kTimerPulseSpread = 0;  // hardware edges: exact
 
-std::vector<uint64_t> schedule(uint32_t steps, const am::RampConfig& cfg) {
-  am::SpeedRamp ramp;
-  EXPECT_EQ(ramp.plan(steps, cfg), am::RampError::none);
-  ramp.batch_below(cfg.tick_hz / 4000);  // as firmware/controller/planner.cpp does
-  std::vector<uint64_t> out;
-  for (am::StepRun r = ramp.next_run(); r.count; r = ramp.next_run()) out.insert(out.end(), r.count, r.interval);
-  return out;
-}
-
 void expect_schedule(const std::string& image, char axis, uint32_t steps, const am::RampConfig& cfg,
                      int64_t jitter_bound = kJitterBound) {
   const std::string line = std::string("MOVE ") + axis + std::to_string(steps) + " F" +
                            std::to_string(cfg.max_rate) + " A" + std::to_string(cfg.accel) + " D" +
                            std::to_string(cfg.decel);
   auto m = simtest::run(image, {line}, 20);
-  const std::vector<uint64_t> expected = schedule(steps, cfg);
+  const std::vector<uint32_t> expected = sim::planned_schedule(steps, cfg);
+  ASSERT_EQ(expected.size(), steps);
   const std::vector<uint64_t>& stamps = m->axis(axis)->step_cycles;
   ASSERT_EQ(stamps.size(), steps);
   // Pulse k is due at pulse 0 plus the ramp's delays 1..k.
