@@ -1,0 +1,497 @@
+// G-code interpreter front end: the modal state of docs/gcode.md and the step
+// from one parsed block (gcode_parser.h) to one action for the machine, a
+// move, an arc, a dwell and so on, with every target already in steps.
+//
+// Contract
+//   GcodeInterpreter<N>(axes) serves a board with the N axes `axes[]` (the
+//   array must outlive the interpreter): their letters, M350 modes and scale
+//   in steps per metre. A word for any other axis letter is no_such_axis.
+//
+//   execute(block, action) applies one block. On GcodeError::none the state
+//   has moved on (modes, feed, G92 offsets, position) and `action` says what
+//   the machine has to do; on any error the state is exactly what it was and
+//   `action` is unspecified: every check is made on a copy, committed last.
+//   At most one action per line (multiple_actions otherwise). run(line,
+//   action) parses and executes a NUL-terminated line.
+//
+//   Positions. Per axis the state keeps (state().axis[i])
+//     coord   the program position (what the G-code's numbers refer to),
+//             in 1/10000 mm (kLengthScale), |coord| <= 214748.3647 mm;
+//     offset  the G92 offset, in steps: steps = length_to_steps(coord) + offset;
+//     steps   the machine position, in steps: where the targets so far lead.
+//   An absolute word sets coord to the value (inch words converted to
+//   1/10000 mm, rounded); an incremental one adds to coord, so rounding to
+//   steps never accumulates over a run of G91 moves. Targets are rounded
+//   half away from zero. A line whose target coord or steps would leave the
+//   int32 range is target_out_of_range. E follows its own distance mode:
+//   G90/G91 set it with the others (as Marlin does), M82/M83 then set E alone.
+//   G92 sets coord to the values given and keeps steps (only the offset
+//   changes, the machine does not move).
+//
+//   Actions (GcodeAction::kind):
+//     move             G0/G1 (or axis words in that motion mode): target[]
+//                      steps for every axis, rapid, feed (1/10000 mm/min)
+//     arc              G2/G3: target[], feed, clockwise, plane_axis[] (board
+//                      axis indices of the plane's first and second axis and
+//                      of its normal, kNoAxis if the board has none), centre[]
+//                      (centre minus start, steps, per plane axis),
+//                      centre_length[] (the same in 1/10000 mm) and radius
+//                      (1/10000 mm). end == start (I/J form) is a full circle.
+//     dwell            G4 P<seconds>: dwell_ms (rounded)
+//     set_position     G92: nothing moves; the new offsets are in the state
+//     report_position  M114: print state().axis[i].coord (and .steps)
+//     enable, release  M17; M18 or M84 (every axis)
+//     set_mode         M350: mode[i] for every axis in `axes`
+//     program_end      M2/M30 (modes back to power-up, see below)
+//     none             a line that only sets modes or F, or is empty
+//   `axes` has bit i set for every axis the line named. After every accepted
+//   line target[] holds the machine position (steps) and coord[] the program
+//   position (1/10000 mm) of every axis: a move's length in mm comes from
+//   coord[] minus the previous coord[], without a conversion back from steps.
+//
+//   Arcs. The centre of an I/J/K arc is start + offsets; the start radius is
+//   |offsets|, and the end point's distance from the centre may differ from
+//   it by at most the tolerance: max(0.005 mm, 0.1 % of the radius), at most
+//   0.5 mm (arc_radius_mismatch beyond). An R arc takes the short way for
+//   R > 0 and the long way (more than 180 degrees) for R < 0; the centre is
+//   computed in integers (64-bit products, isqrt), to about 0.1 um for sane
+//   geometry. An R smaller than half the chord by up to the tolerance is
+//   taken as a half circle (centre at the chord's middle), beyond that it is
+//   arc_radius_too_small. Helices: the other axes move linearly.
+//
+//   Power-up modes: G0, G17, G90, G21, G94, M82, no feed (a feed move before
+//   the first F is bad_feed), all positions and offsets 0. M2/M30 restore
+//   G0, G17, G90, M82 and keep units, F, positions and offsets.
+//
+//   Check order (the error for a line with several faults): parser errors
+//   left to right, then no_such_axis, the F word, axis_conflict,
+//   multiple_actions, missing words, unused_word, then the action's values.
+#pragma once
+#include <stdint.h>
+
+#include "../isqrt.h"
+#include "fixed_number.h"
+#include "gcode_parser.h"
+
+namespace am {
+
+// M350 modes an axis accepts, one bit per mode number.
+constexpr uint8_t kModeWave = 1;       // 0
+constexpr uint8_t kModeTwoPhase = 2;   // 1
+constexpr uint8_t kModeHalf = 4;       // 2
+constexpr uint8_t kModeMicro16 = 8;    // 16
+constexpr uint8_t kModeMicro32 = 16;   // 32
+constexpr uint8_t kModeMicro64 = 32;   // 64
+constexpr uint8_t kModesShield = 63;   // Motor Shield steppers: all six
+constexpr uint8_t kModesUnipolar = 7;  // ULN2003: wave, two-phase, half
+
+constexpr uint8_t kNoAxis = 0xFF;
+
+struct GcodeAxis {
+  char letter;           // 'X', 'Y', 'Z', 'E', 'U', 'A', 'B' or 'C'
+  uint8_t modes;         // kMode* bits; 0: no excitation modes (step/dir)
+  uint32_t steps_per_m;  // position units (steps) per metre of travel
+};
+
+enum class Motion : uint8_t { rapid, linear, arc_cw, arc_ccw };  // G0 G1 G2 G3
+enum class Plane : uint8_t { xy, zx, yz };                        // G17 G18 G19
+
+struct GcodeModal {
+  Motion motion;
+  Plane plane;
+  bool incremental;  // G91
+  bool inches;       // G20
+  bool e_relative;   // M83, or G91 until the next M82
+  int32_t feed;      // 1/10000 mm/min; 0 until the first F
+};
+
+struct GcodeAxisState {
+  int32_t coord;   // program position, 1/10000 mm
+  int32_t offset;  // G92 offset, steps
+  int32_t steps;   // machine position, steps
+};
+
+template <uint8_t N>
+struct GcodeState {
+  GcodeModal modal;
+  GcodeAxisState axis[N];
+};
+
+enum class GcodeActionKind : uint8_t {
+  none, move, arc, dwell, set_position, report_position, enable, release, set_mode, program_end,
+};
+
+template <uint8_t N>
+struct GcodeAction {
+  GcodeActionKind kind;
+  uint8_t axes;              // bit i: the line named axis i
+  bool rapid;                // move: G0
+  bool clockwise;            // arc: G2
+  uint8_t plane_axis[3];     // arc: first, second plane axis, normal (kNoAxis)
+  int32_t target[N];         // machine position after the line, steps
+  int32_t coord[N];          // program position after the line, 1/10000 mm
+  int32_t feed;              // move/arc: 1/10000 mm/min
+  int32_t centre[2];         // arc: centre - start, steps
+  int32_t centre_length[2];  // arc: centre - start, 1/10000 mm
+  int32_t radius;            // arc: 1/10000 mm
+  uint32_t dwell_ms;         // dwell
+  uint8_t mode[N];           // set_mode: M350 mode per named axis
+};
+
+namespace gcode_detail {
+
+// The helpers below are not inlined: on the AVR one copy of each 64-bit or
+// overflow-checked operation is far smaller than avr-gcc's inline expansion.
+
+// a^2 + b^2: below 2^63 for any int32 a, b.
+__attribute__((noinline)) inline uint64_t sum_sq(int32_t a, int32_t b) {
+  const uint32_t ua = a < 0 ? 0u - uint32_t(a) : uint32_t(a);
+  const uint32_t ub = b < 0 ? 0u - uint32_t(b) : uint32_t(b);
+  return uint64_t(ua) * ua + uint64_t(ub) * ub;
+}
+
+// out = a + b for |a|, |b| <= kFixedMax; false (out untouched) if the sum
+// leaves +-kFixedMax (__builtin_add_overflow costs about 80 bytes a use).
+__attribute__((noinline)) inline bool add_checked(int32_t a, int32_t b, int32_t& out) {
+  const int32_t t = int32_t(uint32_t(a) + uint32_t(b));
+  if (((a ^ t) & (b ^ t)) < 0 || t == -kFixedMax - 1) return false;
+  out = t;
+  return true;
+}
+
+// round((a + b) / 2), half away from zero; false if a + b leaves +-kFixedMax.
+inline bool half_sum(int32_t a, int32_t b, int32_t& out) {
+  int32_t t;
+  if (!add_checked(a, b, t)) return false;
+  out = t >= 0 ? int32_t((uint32_t(t) + 1) >> 1) : -int32_t((uint32_t(-t) + 1) >> 1);
+  return true;
+}
+
+// Shifts both left by the same even count until one has bit 62 or 63 set
+// (b > 0), so that their square roots keep 31 or more significant bits.
+__attribute__((noinline)) inline void normalise(uint64_t& a, uint64_t& b) {
+  while (((a | b) >> 62) == 0) {
+    a <<= 2;
+    b <<= 2;
+  }
+}
+
+// Arc end-point tolerance in 1/10000 mm: max(0.005 mm, r / 1000), <= 0.5 mm.
+inline uint32_t arc_tolerance(uint32_t radius) {
+  const uint32_t t = radius / 1000;
+  return t < 50 ? 50 : t > 5000 ? 5000 : t;
+}
+
+inline bool to_length(int32_t v, bool inches, int32_t& out) {
+  if (!inches) {
+    out = v;
+    return true;
+  }
+  return inch_to_length(v, out);
+}
+
+// kMode* bit of an M350 value (1/10000), 0 if it is no mode.
+inline uint8_t mode_bit(int32_t v) {
+  if (v < 0 || v % kLengthScale != 0) return 0;
+  const int32_t n = v / kLengthScale;
+  if (n <= 2) return uint8_t(1u << n);
+  if (n == 16 || n == 32 || n == 64) return uint8_t(n / 2);
+  return 0;
+}
+
+// The plane's axis letters: first | second << 8 | normal << 16.
+inline uint32_t plane_axes(Plane p) {
+  return p == Plane::xy   ? 'X' | uint32_t('Y') << 8 | uint32_t('Z') << 16
+         : p == Plane::zx ? 'Z' | uint32_t('X') << 8 | uint32_t('Y') << 16
+                          : 'Y' | uint32_t('Z') << 8 | uint32_t('X') << 16;
+}
+
+// The plane's offset letters: first | second << 8.
+inline uint16_t plane_offsets(Plane p) {
+  return p == Plane::xy   ? uint16_t('I' | 'J' << 8)
+         : p == Plane::zx ? uint16_t('K' | 'I' << 8)
+                          : uint16_t('J' | 'K' << 8);
+}
+
+// The centre - start (o[0], o[1]) of an R arc with chord (d[0], d[1]), and
+// its radius.
+__attribute__((noinline)) inline GcodeError r_arc_centre(const int32_t (&d)[2], int32_t r, bool ccw, int32_t (&o)[2],
+                                                         uint32_t& radius) {
+  if (r == 0) return GcodeError::arc_zero_radius;
+  if (d[0] == 0 && d[1] == 0) return GcodeError::arc_full_circle_r;
+  radius = r < 0 ? 0u - uint32_t(r) : uint32_t(r);
+  // h = distance of the centre from the chord's middle. The centre is
+  // middle + h * (-d[1], d[0]) / chord: left of the chord for a short
+  // counter-clockwise arc. p[k] = d[k] * 2h / chord, and
+  // 2h / chord = sqrt(4 r^2 - chord^2) / chord.
+  const uint64_t d2 = sum_sq(d[0], d[1]);
+  uint64_t nn = sum_sq(r, r) << 1;  // 4 r^2 < 2^64
+  int32_t p[2] = {0, 0};
+  if (nn < d2) {
+    const uint32_t chord = isqrt64(d2);  // >= 2 * radius here
+    if (chord - 2 * radius > 2 * arc_tolerance(radius)) return GcodeError::arc_radius_too_small;
+    radius = chord / 2 + (chord & 1);  // a half circle
+  } else {
+    nn -= d2;
+    uint64_t dd = d2;
+    normalise(nn, dd);
+    const uint32_t hs = isqrt64(nn), cs = isqrt64(dd);
+    for (uint8_t k = 0; k < 2; ++k)
+      if (!scale_round(d[k], hs, cs, p[k])) return GcodeError::target_out_of_range;
+  }
+  if (ccw == (r > 0)) p[1] = -p[1];
+  else p[0] = -p[0];
+  // o = (d + (-p[1], p[0])) / 2 for the short counter-clockwise arc.
+  if (!half_sum(d[0], p[1], o[0]) || !half_sum(d[1], p[0], o[1])) return GcodeError::target_out_of_range;
+  return GcodeError::none;
+}
+
+// Checks an I/J/K arc: centre - start o, chord d; sets the radius.
+__attribute__((noinline)) inline GcodeError offset_arc_check(const int32_t (&d)[2], const int32_t (&o)[2],
+                                                             uint32_t& radius) {
+  if (o[0] == 0 && o[1] == 0) return GcodeError::arc_zero_radius;
+  int32_t e[2];  // end - centre
+  for (uint8_t k = 0; k < 2; ++k)
+    if (!add_checked(d[k], -o[k], e[k])) return GcodeError::target_out_of_range;
+  radius = isqrt64(sum_sq(o[0], o[1]));
+  const uint32_t end_radius = isqrt64(sum_sq(e[0], e[1]));
+  const uint32_t diff = end_radius > radius ? end_radius - radius : radius - end_radius;
+  return diff > arc_tolerance(radius) ? GcodeError::arc_radius_mismatch : GcodeError::none;
+}
+
+}  // namespace gcode_detail
+
+template <uint8_t N>
+class GcodeInterpreter {
+  static_assert(N >= 1 && N <= 8, "one bit per axis in GcodeAction::axes");
+
+ public:
+  explicit GcodeInterpreter(const GcodeAxis (&axes)[N]) : axes_(axes), board_letters_(0) {
+    for (uint8_t i = 0; i < N; ++i) board_letters_ |= gcode_letter_bit(axes[i].letter);
+    reset();
+  }
+
+  // Power-up state: modes, feed, positions and offsets.
+  void reset() {
+    state_.modal = GcodeModal{Motion::rapid, Plane::xy, false, false, false, 0};
+    for (uint8_t i = 0; i < N; ++i) state_.axis[i] = GcodeAxisState{0, 0, 0};
+  }
+
+  const GcodeState<N>& state() const { return state_; }
+  const GcodeAxis& axis(uint8_t i) const { return axes_[i]; }
+
+  // Board axis index of an (upper-case) letter, kNoAxis if absent.
+  uint8_t index_of(char letter) const {
+    for (uint8_t i = 0; i < N; ++i)
+      if (axes_[i].letter == letter) return i;
+    return kNoAxis;
+  }
+
+  GcodeError run(const char* line, GcodeAction<N>& action) {
+    GcodeBlock block;
+    const GcodeError e = parse_gcode(line, block);
+    return e != GcodeError::none ? e : execute(block, action);
+  }
+
+  GcodeError execute(const GcodeBlock& b, GcodeAction<N>& a);
+
+ private:
+  GcodeError arc(const GcodeBlock& b, const GcodeModal& m, GcodeAction<N>& a) const;
+
+  // steps = length_to_steps(coord) + offset on axis i; false beyond int32.
+  bool machine_steps(uint8_t i, int32_t coord, int32_t offset, int32_t& steps) const {
+    return length_to_steps(coord, axes_[i].steps_per_m, steps) && gcode_detail::add_checked(steps, offset, steps);
+  }
+
+  const GcodeAxis* axes_;
+  uint32_t board_letters_;  // gcode_letter_bit() of every axis letter
+  GcodeState<N> state_;
+};
+
+template <uint8_t N>
+GcodeError GcodeInterpreter<N>::execute(const GcodeBlock& b, GcodeAction<N>& a) {
+  using namespace gcode_detail;
+  constexpr uint32_t kArcWords =
+      gcode_letter_bit('I') | gcode_letter_bit('J') | gcode_letter_bit('K') | gcode_letter_bit('R');
+  const uint32_t words = b.words;
+  if (words & kGcodeAxisLetters & ~board_letters_) return GcodeError::no_such_axis;
+  const bool axis_words = (words & kGcodeAxisLetters) != 0;
+  // The new state is built in m, a.coord[], a.target[] and offset[]; state_
+  // is only written once the whole line has been accepted.
+  GcodeModal m = state_.modal;
+
+  // Modes, in the order the rest of the line sees them.
+  const GcodeCode units = b.group(GcodeGroup::units);
+  const GcodeCode plane = b.group(GcodeGroup::plane);
+  const GcodeCode distance = b.group(GcodeGroup::distance);
+  const GcodeCode extruder = b.group(GcodeGroup::extruder);
+  const GcodeCode motion = b.group(GcodeGroup::motion);
+  if (units != GcodeCode::none) m.inches = units == GcodeCode::g20;
+  if (plane != GcodeCode::none) m.plane = Plane(uint8_t(plane) - uint8_t(GcodeCode::g17));
+  if (distance != GcodeCode::none) m.incremental = m.e_relative = distance == GcodeCode::g91;
+  if (extruder != GcodeCode::none) m.e_relative = extruder == GcodeCode::m83;
+  if (motion != GcodeCode::none) m.motion = Motion(uint8_t(motion) - uint8_t(GcodeCode::g0));
+  if (words & gcode_letter_bit('F')) {
+    const int32_t f = b.get('F');
+    if (f < 0) return GcodeError::bad_feed;
+    if (!to_length(f, m.inches, m.feed)) return GcodeError::out_of_range;
+  }
+
+  // Who takes the axis words; one action per line.
+  const GcodeCode non_modal = b.group(GcodeGroup::non_modal);
+  const GcodeCode machine = b.group(GcodeGroup::machine);
+  const GcodeCode stop = b.group(GcodeGroup::stop);
+  const bool dwell = non_modal == GcodeCode::g4;
+  const bool set_position = non_modal == GcodeCode::g92;
+  const bool set_mode = machine == GcodeCode::m350;
+  if ((set_position || set_mode) && motion != GcodeCode::none) return GcodeError::axis_conflict;
+  const bool move = axis_words && !set_position && !set_mode;
+  const uint8_t actions = uint8_t((non_modal != GcodeCode::none) + (machine != GcodeCode::none) +
+                                  (stop != GcodeCode::none) + move);
+  if (actions > 1) return GcodeError::multiple_actions;
+  const bool arc_mode = m.motion >= Motion::arc_cw;
+
+  // Required words, then unused ones.
+  if (dwell && !(words & gcode_letter_bit('P'))) return GcodeError::missing_dwell_time;
+  if (((set_position || set_mode) && !axis_words) || (arc_mode && actions == 0 && (words & kArcWords)))
+    return GcodeError::missing_axis_word;
+  uint32_t used = gcode_letter_bit('N') | gcode_letter_bit('F') | kGcodeAxisLetters;
+  if (dwell) used |= gcode_letter_bit('P');
+  if (move && arc_mode) {
+    const uint16_t o = plane_offsets(m.plane);
+    const uint32_t offset_words = gcode_letter_bit(char(o)) | gcode_letter_bit(char(o >> 8));
+    const bool r = (words & gcode_letter_bit('R')) != 0;
+    const bool offsets = (words & offset_words) != 0;
+    if (!r && !offsets) return GcodeError::missing_arc_words;
+    if (r && offsets) return GcodeError::arc_mixed_form;
+    used |= offset_words | gcode_letter_bit('R');
+  }
+  if (words & ~used) return GcodeError::unused_word;
+  if (move && m.motion != Motion::rapid && m.feed <= 0) return GcodeError::bad_feed;
+
+  // The axis words (pointers walked in step: indexing costs a multiply per
+  // array on the AVR). Offsets change only with G92, into offset[].
+  int32_t offset[N];
+  uint8_t named = 0;
+  uint8_t bit = 1;
+  const GcodeAxis* ax = axes_;
+  const GcodeAxisState* st = state_.axis;
+  int32_t* coord = a.coord;
+  int32_t* steps = a.target;
+  int32_t* off = offset;
+  for (uint8_t i = 0; i < N; ++i, bit = uint8_t(bit << 1), ++ax, ++st, ++coord, ++steps, ++off) {
+    *coord = st->coord;
+    *steps = st->steps;
+    const char letter = ax->letter;
+    if (!b.has(letter)) continue;
+    named |= bit;
+    const int32_t w = b.get(letter);
+    if (set_mode) {
+      const uint8_t mode = mode_bit(w);
+      if (mode == 0) return GcodeError::bad_mode;
+      if (ax->modes == 0) return GcodeError::axis_has_no_modes;
+      if (!(ax->modes & mode)) return GcodeError::mode_not_available;
+      a.mode[i] = mode <= kModeHalf ? uint8_t(mode >> 1) : uint8_t(mode << 1);
+      continue;
+    }
+    int32_t len, t;
+    if (!to_length(w, m.inches, len)) return GcodeError::target_out_of_range;
+    if (set_position) {
+      if (!length_to_steps(len, ax->steps_per_m, t) || !add_checked(*steps, -t, *off))
+        return GcodeError::target_out_of_range;
+    } else if (((letter == 'E' ? m.e_relative : m.incremental) && !add_checked(*coord, len, len)) ||
+               !length_to_steps(len, ax->steps_per_m, t) || !add_checked(t, st->offset, *steps)) {
+      return GcodeError::target_out_of_range;
+    }
+    *coord = len;
+  }
+
+  // The action.
+  a.axes = named;
+  a.rapid = m.motion == Motion::rapid;
+  a.feed = m.feed;
+  GcodeActionKind kind = GcodeActionKind::none;
+  if (dwell) {
+    const int32_t p = b.get('P');  // 1/10000 s
+    if (p < 0) return GcodeError::out_of_range;
+    a.dwell_ms = (uint32_t(p) + 5) / 10;
+    kind = GcodeActionKind::dwell;
+  } else if (set_position) {
+    kind = GcodeActionKind::set_position;
+  } else if (set_mode) {
+    kind = GcodeActionKind::set_mode;
+  } else if (machine != GcodeCode::none) {
+    kind = machine == GcodeCode::m17    ? GcodeActionKind::enable
+           : machine == GcodeCode::m114 ? GcodeActionKind::report_position
+                                        : GcodeActionKind::release;
+  } else if (stop != GcodeCode::none) {
+    m.motion = Motion::rapid;
+    m.plane = Plane::xy;
+    m.incremental = m.e_relative = false;
+    kind = GcodeActionKind::program_end;
+  } else if (move) {
+    kind = GcodeActionKind::move;
+    if (arc_mode) {
+      const GcodeError e = arc(b, m, a);
+      if (e != GcodeError::none) return e;
+      kind = GcodeActionKind::arc;
+    }
+  }
+  a.kind = kind;
+
+  // Commit.
+  state_.modal = m;
+  GcodeAxisState* out = state_.axis;
+  bit = 1;
+  for (uint8_t i = 0; i < N; ++i, ++out, bit = uint8_t(bit << 1)) {
+    if (!(named & bit)) continue;
+    out->coord = a.coord[i];
+    out->steps = a.target[i];
+    if (set_position) out->offset = offset[i];
+  }
+  return GcodeError::none;
+}
+
+// The arc from state_ (start) to a.coord[] (end), into a; m: the line's modes.
+template <uint8_t N>
+GcodeError GcodeInterpreter<N>::arc(const GcodeBlock& b, const GcodeModal& m, GcodeAction<N>& a) const {
+  using namespace gcode_detail;
+  const uint32_t letters = plane_axes(m.plane);
+  const uint16_t offset_letters = plane_offsets(m.plane);
+  uint8_t idx[2];
+  int32_t d[2], o[2];  // chord and centre - start, 1/10000 mm
+  for (uint8_t k = 0; k < 2; ++k) {
+    const uint8_t i = idx[k] = index_of(char(letters >> (8 * k)));
+    if (i == kNoAxis) return GcodeError::no_such_axis;
+    if (!add_checked(a.coord[i], -state_.axis[i].coord, d[k])) return GcodeError::target_out_of_range;
+    const char letter = char(offset_letters >> (8 * k));
+    o[k] = 0;
+    if (b.has(letter) && !to_length(b.get(letter), m.inches, o[k])) return GcodeError::out_of_range;
+  }
+  uint32_t radius;
+  GcodeError e;
+  if (b.has('R')) {
+    int32_t r;
+    if (!to_length(b.get('R'), m.inches, r)) return GcodeError::out_of_range;
+    e = r_arc_centre(d, r, m.motion == Motion::arc_ccw, o, radius);
+  } else {
+    e = offset_arc_check(d, o, radius);
+  }
+  if (e != GcodeError::none) return e;
+  for (uint8_t k = 0; k < 2; ++k) {
+    const uint8_t i = idx[k];
+    const GcodeAxisState& start = state_.axis[i];
+    int32_t centre, steps;
+    if (!add_checked(start.coord, o[k], centre) || !machine_steps(i, centre, start.offset, steps) ||
+        !add_checked(steps, -start.steps, a.centre[k]))
+      return GcodeError::target_out_of_range;
+    a.centre_length[k] = o[k];
+    a.plane_axis[k] = i;
+  }
+  a.clockwise = m.motion == Motion::arc_cw;
+  a.plane_axis[2] = index_of(char(letters >> 16));
+  a.radius = int32_t(radius);
+  return GcodeError::none;
+}
+
+}  // namespace am
