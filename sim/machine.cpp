@@ -27,15 +27,48 @@ constexpr uint8_t kPaint = 0xA5;
 // all we want.
 void no_sleep(avr_t*, avr_cycle_count_t) {}
 
-// simavr logs its ELF loading at debug level with no core to filter on; the
-// report owns standard output, so only errors get through, to standard error.
-// (Its warnings are notes such as an OCR write before a timer's clock and
-// mode are set, which the datasheet allows.)
-void quiet_logger(avr_t*, const int level, const char* format, va_list args) {
-  if (level <= LOG_ERROR) std::vfprintf(stderr, format, args);
+// The machines by core, for the logger: simavr has one logger per process.
+// (A constructor that throws leaves its core, and its entry, behind; that
+// core never runs, so the entry is never looked up.)
+std::map<const avr_t*, Machine*>& machines_by_core() {
+  static std::map<const avr_t*, Machine*> machines;
+  return machines;
 }
 
 }  // namespace
+
+// What gets printed is what simavr's own logger prints (messages up to the
+// core's log level, and errors always), except that it all goes to standard
+// error, since the report owns standard output, and that messages without a
+// core (its ELF loading, at debug level) are left out. Machines set the level
+// to LOG_ERROR: its warnings are notes such as an OCR write before a timer's
+// clock and mode are set, which the datasheet allows. Errors are counted for
+// their machine, and fail its run (SimulatorFault).
+void Machine::on_simavr_log(avr_t* avr, const int level, const char* format, va_list args) {
+  if (level <= LOG_ERROR || (avr && avr->log >= level)) {
+    va_list copy;
+    va_copy(copy, args);
+    std::vfprintf(stderr, format, copy);
+    va_end(copy);
+  }
+  if (level != LOG_ERROR || !avr) return;
+  const auto it = machines_by_core().find(avr);
+  if (it == machines_by_core().end()) return;
+  Machine* m = it->second;
+  if (m->simavr_errors_++ == 0) {
+    char text[256];
+    std::vsnprintf(text, sizeof text, format, args);
+    m->first_simavr_error_ = text;
+    while (!m->first_simavr_error_.empty() && m->first_simavr_error_.back() == '\n')
+      m->first_simavr_error_.pop_back();
+  }
+}
+
+void Machine::throw_simavr_fault() const {
+  throw SimulatorFault("simavr reported " + std::to_string(simavr_errors_) + " error(s) by cycle " +
+                       std::to_string(avr_->cycle) + ", the first: \"" + first_simavr_error_ +
+                       "\" (a lost event or an access it cannot simulate: the run is not valid)");
+}
 
 struct Machine::PinHook {
   Machine* machine;
@@ -46,7 +79,7 @@ struct Machine::PinHook {
 };
 
 Machine::Machine(const std::string& elf_path) : board_(read_board_descriptor(elf_path)) {
-  avr_global_logger_set(quiet_logger);
+  avr_global_logger_set(&Machine::on_simavr_log);
   elf_firmware_t fw;
   std::memset(&fw, 0, sizeof fw);
   if (elf_read_firmware(elf_path.c_str(), &fw) != 0) throw std::runtime_error("cannot load " + elf_path);
@@ -54,6 +87,7 @@ Machine::Machine(const std::string& elf_path) : board_(read_board_descriptor(elf
   fw.frequency = board_.f_cpu;
   avr_ = avr_make_mcu_by_name(board_.mcu);
   if (!avr_) throw std::runtime_error(std::string("simavr has no core for ") + board_.mcu);
+  machines_by_core()[avr_] = this;
   avr_init(avr_);
   avr_->log = LOG_ERROR;
   avr_->sleep = no_sleep;
@@ -75,6 +109,7 @@ Machine::Machine(const std::string& elf_path) : board_(read_board_descriptor(elf
 
 Machine::~Machine() {
   if (avr_) avr_terminate(avr_);
+  machines_by_core().erase(avr_);
 }
 
 uint64_t Machine::cycles() const { return avr_->cycle; }
@@ -302,16 +337,12 @@ uint16_t Machine::pwm_duty_at(const std::vector<PwmSample>& log, uint64_t cycle)
 
 RunEnd Machine::run(const std::function<bool()>& stop, uint64_t budget) {
   const uint64_t end = avr_->cycle + budget;
-  uint64_t next_report = avr_->cycle + (uint64_t(1) << 27);
+  if (simavr_errors_) throw_simavr_fault();
   while (!stop()) {
     if (avr_->cycle >= end) return RunEnd::budget_spent;
     const int state = avr_run(avr_);
+    if (simavr_errors_) throw_simavr_fault();
     if (state == cpu_Done || state == cpu_Crashed) return RunEnd::cpu_stopped;
-    if (progress_ && avr_->cycle >= next_report) {
-      std::fprintf(stderr, "avrmotion-sim: %.2f s simulated, %zu lines answered\n",
-                   double(avr_->cycle) / board_.f_cpu, serial_->responses().size());
-      next_report += uint64_t(1) << 27;
-    }
   }
   return RunEnd::done;
 }

@@ -18,12 +18,15 @@
 //                      changed (simavr's TIMER_IRQ_OUT_PWM0/1), cycle-stamped.
 // run() always ends: when the stop condition holds, when the cycle budget is
 // spent (a hung image fails a test instead of hanging CI) or when the core
-// stops or crashes.
+// stops or crashes. A run in which simavr reported an error does not end
+// normally at all: run() throws SimulatorFault (below).
 #pragma once
+#include <cstdarg>
 #include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -53,6 +56,17 @@ struct PwmSample {
 };
 
 enum class RunEnd { done, budget_spent, cpu_stopped };
+
+// simavr reports what it could not simulate only as an error-level log line,
+// and runs on: a dropped event ("CYCLE: avr_cycle_timer_insert: ran out of
+// timers (64)!" - a timer or UART stops for the rest of the run), an invalid
+// memory access, a bad opcode. Such a run proves nothing, so run() throws
+// this (avrmotion-sim and avrmotion-bench exit with status 2 and the message,
+// a test fails), on the first error and on every later run of the machine.
+class SimulatorFault : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 class Machine {
  public:
@@ -96,9 +110,16 @@ class Machine {
   const std::vector<PwmSample>& watch_pwm(char timer, uint8_t channel);
   static uint16_t pwm_duty_at(const std::vector<PwmSample>& log, uint64_t cycle);
 
-  void set_progress(bool on) { progress_ = on; }
+
+  // simavr's error-level messages about this machine so far (each one is
+  // also printed on standard error), and the first of them.
+  uint64_t simavr_errors() const { return simavr_errors_; }
+  const std::string& first_simavr_error() const { return first_simavr_error_; }
 
  private:
+  // The process-wide simavr logger: counts errors per machine.
+  static void on_simavr_log(avr_t* avr, int level, const char* format, va_list args);
+  void throw_simavr_fault() const;
   struct PinHook;
   struct PortHook;
   void hook_pin(uint8_t code, std::function<void(bool, uint64_t)> on_change);
@@ -129,7 +150,8 @@ class Machine {
   static void on_pwm_irq(avr_irq_t* irq, uint32_t value, void* param);
   std::map<int, std::unique_ptr<PwmHook>> pwm_hooks_;
   uint16_t paint_start_ = 0;
-  bool progress_ = false;
+  uint64_t simavr_errors_ = 0;
+  std::string first_simavr_error_;
 };
 
 }  // namespace sim

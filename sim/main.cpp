@@ -28,7 +28,8 @@ void usage() {
                "                      an axis letter, a pin (PB3), a vector (isr11), a PWM channel (pwm2A)\n"
                "  --max-seconds S     simulated-time budget (default 120); exit 3 when spent\n"
                "  --progress          progress on standard error about once a second, and at the end\n"
-               "exit: 0 ran to the end, 2 bad usage or image, 3 budget spent, 4 CPU stopped\n";
+               "exit: 0 ran to the end, 2 bad usage or image, 3 budget spent, 4 CPU stopped,\n"
+               "      5 simavr reported an error (a dropped event: the run is not valid)\n";
 }
 
 std::string strip(const std::string& line) {
@@ -100,6 +101,9 @@ int main(int argc, char** argv) {
       return 3;
     }
     return end == sim::RunEnd::done ? 0 : 4;
+  } catch (const sim::SimulatorFault& e) {
+    std::cerr << "avrmotion-sim: " << e.what() << "\n";
+    return 5;
   } catch (const std::exception& e) {
     std::cerr << "avrmotion-sim: " << e.what() << "\n";
     return 2;

@@ -18,10 +18,14 @@
 // the instruction that writes the port, or, for timer outputs, the cycle at
 // which simavr processes the compare match. Pin IRQs fire on every port
 // write, so edges are detected here by comparing with the last level.
+//
+// A run in which simavr logs an error fails too: that is how it reports an
+// event it dropped ("CYCLE: avr_cycle_timer_insert: ran out of timers").
 #include <simavr/sim_avr.h>
 #include <simavr/sim_elf.h>
 #include <simavr/avr_ioport.h>
 
+#include <cstdarg>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -73,6 +77,13 @@ void pin_changed(avr_irq_t*, uint32_t value, void* param) {
 }
 
 void no_sleep(avr_t*, avr_cycle_count_t) {}  // default syncs to wall-clock time
+
+// simavr's own logger (same filter, same streams), counting its errors.
+int simavr_errors = 0;
+void counting_logger(avr_t* avr, const int level, const char* format, va_list args) {
+  if (level == LOG_ERROR) ++simavr_errors;
+  if (!avr || avr->log >= level) std::vfprintf(level > LOG_ERROR ? stdout : stderr, format, args);
+}
 
 // Output-compare pins of the supported parts, and the marker pin the
 // programs use (calib.h MARK_*: a port with no timer output in use).
@@ -173,6 +184,7 @@ int main(int argc, char** argv) {
   if (expect.empty()) { std::fprintf(stderr, "no EXPECT lines in %s\n", files[1].c_str()); return 2; }
 
   // --- simulator ---
+  avr_global_logger_set(counting_logger);
   elf_firmware_t fw;
   std::memset(&fw, 0, sizeof fw);
   if (elf_read_firmware(files[0].c_str(), &fw) != 0) {
@@ -230,6 +242,11 @@ int main(int argc, char** argv) {
     else
       std::printf("FAIL %-28s expected %6lld  measured   none (edge missing)\n",
                   e.name.c_str(), (long long)e.expected);
+  }
+  if (simavr_errors) {
+    std::printf("FAIL: simavr logged %d error(s), see standard error (a dropped event invalidates the run)\n",
+                simavr_errors);
+    ++failures;
   }
   if (failures && std::getenv("CALIB_TRACE"))
     for (const auto& ed : edges)

@@ -8,7 +8,8 @@
 set -eu
 build=${1:-build}
 src=$(cd "$(dirname "$0")" && pwd)/programs
-[ -x "$build/calib_runner_stock" ] || { echo "no $build/calib_runner_stock (libsimavr-dev missing?)" >&2; exit 2; }
+bin=$build/tests   # the runners (the programs are in $build/calibration-avr)
+[ -x "$bin/calib_runner_stock" ] || { echo "no $bin/calib_runner_stock (libsimavr-dev missing?)" >&2; exit 2; }
 status=0
 echo "| program | mcu | expectation | expected | stock 1.6 | patched |"
 echo "|---|---|---|---|---|---|"
@@ -16,8 +17,8 @@ for elf in "$build"/calibration-avr/*.elf; do
   base=$(basename "$elf" .elf)
   name=${base%-*}
   mcu=${base##*-}
-  "$build/calib_runner_stock" --mcu "$mcu" "$elf" "$src/$name.S" 2>/dev/null > "$build/.stock.out" || true
-  "$build/calib_runner" --mcu "$mcu" "$elf" "$src/$name.S" 2>/dev/null > "$build/.patched.out" || status=1
+  "$bin/calib_runner_stock" --mcu "$mcu" "$elf" "$src/$name.S" 2>/dev/null > "$build/.stock.out" || true
+  "$bin/calib_runner" --mcu "$mcu" "$elf" "$src/$name.S" 2>/dev/null > "$build/.patched.out" || status=1
   # result lines: "<ok|FAIL> <name> expected <n> measured <n|none ...>"
   awk -v prog="$name" -v mcu="$mcu" '
     FNR == NR && $1 ~ /^(ok|FAIL)$/ { stock[$2] = $6; next }

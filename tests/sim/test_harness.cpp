@@ -2,7 +2,23 @@
 // the stack high-water mark (step timestamps are covered by test_step_timing).
 #include <sim_avr.h>
 
+#include <string>
+
 #include "sim_fixture.h"
+
+namespace {
+
+avr_cycle_count_t never_mind(avr_t*, avr_cycle_count_t, void*) { return 0; }
+
+// A cycle timer that registers more far-off timers than simavr has slots, as
+// the level pollers piling up on a PWM pin did (issue 7, docs/simulator.md).
+avr_cycle_count_t fill_the_timer_pool(avr_t* avr, avr_cycle_count_t, void*) {
+  static char params[MAX_CYCLE_TIMERS + 1];
+  for (char& p : params) avr_cycle_timer_register(avr, 1000000000, never_mind, &p);
+  return 0;
+}
+
+}  // namespace
 
 TEST(Harness, AHungRunEndsAtItsCycleBudget) {
   // The driver-board image never prints a banner, so the serial script can
@@ -38,4 +54,30 @@ TEST(Harness, StackHighWaterIsFoundByPainting) {
   const unsigned deeper = used + 100;
   avr->data[avr->ramend + 1 - deeper] = 0;
   EXPECT_EQ(m->stack_bytes(), deeper);
+}
+
+TEST(Harness, ARunInWhichSimavrDropsAnEventFails) {
+  // simavr reports a lost event only with an error-level log line ("CYCLE:
+  // avr_cycle_timer_register: pool is full (64)!", "... ran out of timers")
+  // and runs on without it. Here its cycle-timer pool overflows 100000 cycles
+  // into the run: the run must stop right there and fail with the message.
+  sim::Machine m(simtest::image("uno"));
+  avr_cycle_timer_register(m.avr(), 100000, fill_the_timer_pool, nullptr);
+  std::string what;
+  testing::internal::CaptureStderr();
+  try {
+    m.run([] { return false; }, 1000000);
+  } catch (const sim::SimulatorFault& e) {
+    what = e.what();
+  }
+  const std::string printed = testing::internal::GetCapturedStderr();
+  EXPECT_NE(what.find("pool is full (64)"), std::string::npos) << "no SimulatorFault, or another one: " << what;
+  EXPECT_NE(printed.find("pool is full (64)"), std::string::npos) << printed;  // still printed, as simavr would
+  EXPECT_GE(m.simavr_errors(), 1u);
+  EXPECT_EQ(m.first_simavr_error().find("CYCLE: avr_cycle_timer_register: pool is full"), 0u)
+      << m.first_simavr_error();
+  EXPECT_GE(m.cycles(), 100000u);
+  EXPECT_LT(m.cycles(), 100000u + 8);  // within one instruction
+  // The machine stays failed: a later run cannot hide the loss.
+  EXPECT_THROW(m.run([] { return false; }, 1000), sim::SimulatorFault);
 }
