@@ -1,7 +1,7 @@
 // The board descriptor record (core/board_descriptor.h) for this image, kept
 // in its own ELF section at a fixed address far outside flash and RAM: the
 // simulator reads it, the .hex for flashing leaves it out.
-#include "../core/board_descriptor.h"
+#include "../core/board/descriptor.h"
 #include "board.h"
 
 namespace {

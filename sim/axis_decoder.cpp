@@ -2,7 +2,7 @@
 
 #include <cstddef>
 
-#include "../core/shield_wiring.h"
+#include "../core/motor/shield_wiring.h"
 
 namespace sim {
 

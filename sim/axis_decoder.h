@@ -3,7 +3,7 @@
 //   StepDirDecoder   counts rising step edges, signed by the direction line.
 //   CoilDecoder      follows a coil pattern (from the shield's latch or from
 //                    four unipolar driver inputs) around the 8-state half-step
-//                    cycle of core/phase_sequencer.h.
+//                    cycle of core/motor/phase_sequencer.h.
 //   Latch595Model    a 74HC595: shifts on clock rising edges, copies to its
 //                    outputs on latch rising edges, tri-states them while
 //                    output-enable is high; it feeds the shield's decoders.

@@ -1,11 +1,11 @@
-// Reads the board descriptor (core/board_descriptor.h) out of a firmware ELF,
+// Reads the board descriptor (core/board/descriptor.h) out of a firmware ELF,
 // so the simulator knows the MCU, the clock and every axis's wiring without a
 // second copy of any board definition.
 #pragma once
 #include <cstdint>
 #include <string>
 
-#include "../core/board_descriptor.h"
+#include "../core/board/descriptor.h"
 
 namespace sim {
 

@@ -14,7 +14,7 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "../core/shield_wiring.h"
+#include "../core/motor/shield_wiring.h"
 #include "board_info.h"
 
 namespace sim {

@@ -30,7 +30,7 @@
 #include <string>
 #include <vector>
 
-#include "../core/board_descriptor.h"
+#include "../core/board/descriptor.h"
 #include "axis_decoder.h"
 #include "serial_host.h"
 

@@ -9,7 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "../core/board_descriptor.h"
+#include "../core/board/descriptor.h"
 #include "motion.h"
 #include "ticks.h"
 

@@ -1,12 +1,12 @@
 // The schedule the firmware's planner computes for a one-axis move: the
-// core's SpeedRamp, batched above 4 kHz exactly as firmware/controller/
+// core's SpeedRamp, batched above 4 kHz exactly as firmware/apps/cnc/
 // planner.cpp does, one interval (timer ticks before the step) per step.
 // Tests and the benchmark compare the step edges they see with it.
 #pragma once
 #include <cstdint>
 #include <vector>
 
-#include "../core/speed_ramp.h"
+#include "../core/motion/speed_ramp.h"
 
 namespace sim {
 

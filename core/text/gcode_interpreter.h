@@ -69,7 +69,7 @@
 #pragma once
 #include <stdint.h>
 
-#include "../isqrt.h"
+#include "../math/isqrt.h"
 #include "fixed_number.h"
 #include "gcode_parser.h"
 

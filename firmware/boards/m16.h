@@ -1,5 +1,5 @@
 // Board: ATmega16 lathe controller (seed-004 section 4).
-// avrmotion-board: mcu=atmega16 f_cpu=16000000,8000000
+// avrmotion-board: mcu=atmega16 f_cpu=16000000,8000000 app=cnc
 //
 // Leadscrew on a step/dir driver (axis Z): step PC0, direction PC1, enable
 // PC7 (active low); a 200-step motor on the 3.175 mm leadscrew gives
@@ -12,9 +12,9 @@
 // (main() does that on every ATmega16/32).
 #pragma once
 #include "../../hal/avr/gpio.h"
-#include "../drivers/axis_set.h"
-#include "../drivers/step_dir_axis.h"
-#include "../drivers/unipolar_axis.h"
+#include "../axes/axis_set.h"
+#include "../axes/step_dir_axis.h"
+#include "../axes/unipolar_axis.h"
 
 namespace board {
 

@@ -13,8 +13,8 @@
 // from PORTB.
 #pragma once
 #include "../../hal/avr/gpio.h"
-#include "../drivers/axis_set.h"
-#include "../drivers/unipolar_axis.h"
+#include "../axes/axis_set.h"
+#include "../axes/unipolar_axis.h"
 
 namespace board {
 

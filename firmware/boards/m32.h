@@ -1,5 +1,5 @@
 // Board: ATmega32 printer/CNC controller (seed-002).
-// avrmotion-board: mcu=atmega32 f_cpu=16000000
+// avrmotion-board: mcu=atmega32 f_cpu=16000000 app=cnc
 //
 // X Y Z E on step/dir drivers: steps PC0/PC2/PC4/PC6, directions
 // PC1/PC3/PC5/PC7, enables PB0..PB3 (active low). Endstops (switch to ground,
@@ -10,9 +10,9 @@
 // like the Uno's U axis.
 #pragma once
 #include "../../hal/avr/gpio.h"
-#include "../drivers/axis_set.h"
-#include "../drivers/step_dir_axis.h"
-#include "../drivers/unipolar_axis.h"
+#include "../axes/axis_set.h"
+#include "../axes/step_dir_axis.h"
+#include "../axes/unipolar_axis.h"
 
 namespace board {
 

@@ -1,5 +1,5 @@
 // Board: Arduino Uno + Adafruit Motor Shield v1 (seed-000 section 1).
-// avrmotion-board: mcu=atmega328p f_cpu=16000000
+// avrmotion-board: mcu=atmega328p f_cpu=16000000 app=cnc
 //
 // Two bipolar steppers through the shield's 74HC595 (D12 latch, D4 clock,
 // D7 output enable active low, D8 data) and two L293D whose enables are D11/D3
@@ -14,10 +14,10 @@
 #include "../../hal/avr/gpio.h"
 #include "../../hal/avr/latch595.h"
 #include "../../hal/avr/pwm8.h"
-#include "../drivers/axis_set.h"
-#include "../drivers/shield_stepper.h"
-#include "../drivers/timer_step_axis.h"
-#include "../drivers/unipolar_axis.h"
+#include "../axes/axis_set.h"
+#include "../axes/shield_stepper.h"
+#include "../axes/timer_step_axis.h"
+#include "../axes/unipolar_axis.h"
 
 namespace board {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "core/accel_stepper.h"
+#include "core/motion/accel_stepper.h"
 
 namespace {
 

@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "core/command_parser.h"
+#include "core/text/command_parser.h"
 
 using am::Command;
 using am::CommandKind;

@@ -1,4 +1,4 @@
-// ExcitationCursor / ExcitationTable (core/microstep.h): the shield's modes on
+// ExcitationCursor / ExcitationTable (core/motor/microstep.h): the shield's modes on
 // one rotor angle. Expectations come from seed-000 sections 1-2 (coil order,
 // half-step cycle, AFMotor curve) and from std::sin, not from the code.
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "core/microstep.h"
+#include "core/motor/microstep.h"
 
 namespace {
 

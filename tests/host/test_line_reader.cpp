@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "core/line_reader.h"
+#include "core/text/line_reader.h"
 
 namespace {
 using Reader = am::LineReader<8>;

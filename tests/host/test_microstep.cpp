@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "core/microstep.h"
-#include "core/phase_sequencer.h"
+#include "core/motor/microstep.h"
+#include "core/motor/phase_sequencer.h"
 
 namespace {
 

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "core/phase_sequencer.h"
+#include "core/motor/phase_sequencer.h"
 
 namespace {
 

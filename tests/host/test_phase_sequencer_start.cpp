@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "core/phase_sequencer.h"
+#include "core/motor/phase_sequencer.h"
 
 namespace {
 

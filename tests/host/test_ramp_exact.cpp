@@ -5,8 +5,8 @@
 #include <cmath>
 #include <vector>
 
-#include "core/speed_ramp.h"
-#include "core/speed_ramp_exact.h"
+#include "core/motion/speed_ramp.h"
+#include "core/motion/speed_ramp_exact.h"
 
 namespace {
 

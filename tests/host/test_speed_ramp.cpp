@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "core/speed_ramp.h"
+#include "core/motion/speed_ramp.h"
 
 namespace {
 

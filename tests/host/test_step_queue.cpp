@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "core/step_queue.h"
+#include "core/motion/step_queue.h"
 
 TEST(StepSegment, LongIntervalsSplitIntoEqualTimerPeriods) {
   for (uint32_t interval : {1u, 2u, 65535u, 65536u, 65537u, 65983u, 131072u, 131073u, 1000000u,

@@ -2,8 +2,8 @@
 //
 // Contract
 //   parse_args() turns the command line into Options or an error message.
-//   plan_intervals() runs the firmware's own ramp code (core/speed_ramp.h or
-//   core/speed_ramp_exact.h) and returns the tick interval of every step.
+//   plan_intervals() runs the firmware's own ramp code (core/motion/speed_ramp.h or
+//   core/motion/speed_ramp_exact.h) and returns the tick interval of every step.
 //   Motor models the torque-speed method of seed-000 section 3.3: with the
 //   motor's pull-out torque T(f) (piecewise linear in steps/s), load torque
 //   T_L and inertia J, the fastest speed change is
@@ -21,8 +21,8 @@
 #include <string>
 #include <vector>
 
-#include "core/speed_ramp.h"
-#include "core/speed_ramp_exact.h"
+#include "core/motion/speed_ramp.h"
+#include "core/motion/speed_ramp_exact.h"
 
 namespace am::profile {
 

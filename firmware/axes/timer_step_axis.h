@@ -8,7 +8,7 @@
 #pragma once
 #include <stdint.h>
 
-#include "../../core/board_descriptor.h"
+#include "../../core/board/descriptor.h"
 #include "../../hal/avr/gpio.h"
 #include "../../hal/avr/step_timer.h"
 

@@ -30,7 +30,7 @@
 //   >= 1 at 8 MHz); check() reports out_of_range otherwise.
 #pragma once
 #include <stdint.h>
-#include "isqrt.h"
+#include "../math/isqrt.h"
 
 namespace am {
 

@@ -9,7 +9,7 @@
 #pragma once
 #include <stdint.h>
 
-#include "../../core/board_descriptor.h"
+#include "../../core/board/descriptor.h"
 
 // Whether an axis type's step edges come from the step timer's output-compare
 // pin (it declares `static constexpr bool timer_pulse = true`).

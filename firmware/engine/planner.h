@@ -12,7 +12,7 @@
 #pragma once
 #include <stdint.h>
 
-#include "../../core/speed_ramp.h"
+#include "../../core/motion/speed_ramp.h"
 
 namespace planner {
 

@@ -24,7 +24,7 @@
 #pragma once
 #include <stdint.h>
 
-#include "../../core/step_queue.h"
+#include "../../core/motion/step_queue.h"
 
 namespace engine {
 

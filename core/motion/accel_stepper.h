@@ -38,7 +38,7 @@
 // (a < 2 (f / 16.7e6)^2 on the first step) are the caller's to split.
 #pragma once
 #include <stdint.h>
-#include "isqrt.h"
+#include "../math/isqrt.h"
 
 namespace am {
 

@@ -3,10 +3,10 @@
 // protocol forever. All timing-critical work happens in the step interrupt.
 #include <avr/interrupt.h>
 
-#include "../../hal/avr/uart.h"
-#include "../board.h"
+#include "../../../hal/avr/uart.h"
+#include "../../board.h"
 #include "protocol.h"
-#include "step_engine.h"
+#include "../../engine/step_engine.h"
 
 int main() {
   hal_disable_jtag();

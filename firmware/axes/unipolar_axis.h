@@ -10,8 +10,8 @@
 #pragma once
 #include <stdint.h>
 
-#include "../../core/board_descriptor.h"
-#include "../../core/phase_sequencer.h"
+#include "../../core/board/descriptor.h"
+#include "../../core/motor/phase_sequencer.h"
 #include "../../hal/avr/gpio.h"
 
 template <char Name, typename In1, typename In2, typename In3, typename In4, uint32_t StepsPerMetre>

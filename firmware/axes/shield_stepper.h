@@ -30,10 +30,10 @@
 #include <avr/pgmspace.h>
 #include <stdint.h>
 
-#include "../../core/board_descriptor.h"
-#include "../../core/microstep.h"
-#include "../../core/phase_sequencer.h"
-#include "../../core/shield_wiring.h"
+#include "../../core/board/descriptor.h"
+#include "../../core/motor/microstep.h"
+#include "../../core/motor/phase_sequencer.h"
+#include "../../core/motor/shield_wiring.h"
 #include "../../hal/avr/gpio.h"
 #include "../../hal/avr/latch595.h"
 #include "axis_set.h"

@@ -4,7 +4,7 @@
 // Contract
 //   CoilMap<APos, BPos, ANeg, BNeg> takes the port masks of the four coil
 //   pins; port_bits(pattern) turns a sequencer pattern (bit0 = A+, bit1 = B+,
-//   bit2 = A-, bit3 = B-; core/phase_sequencer.h) into those port bits.
+//   bit2 = A-, bit3 = B-; core/motor/phase_sequencer.h) into those port bits.
 //   pair_a / pair_b are the bits of the two coil pairs that share a sense
 //   resistor (A+/A- = a/c, B+/B- = b/d).
 //

@@ -2,13 +2,13 @@
 
 #include <avr/pgmspace.h>
 
-#include "../../core/command_parser.h"
-#include "../../core/line_reader.h"
-#include "../../hal/avr/uart.h"
-#include "../board.h"
-#include "../drivers/axis_modes.h"
-#include "planner.h"
-#include "step_engine.h"
+#include "../../../core/text/command_parser.h"
+#include "../../../core/text/line_reader.h"
+#include "../../../hal/avr/uart.h"
+#include "../../board.h"
+#include "../../axes/axis_modes.h"
+#include "../../engine/planner.h"
+#include "../../engine/step_engine.h"
 
 namespace protocol {
 namespace {

@@ -6,7 +6,7 @@
 #pragma once
 #include <stdint.h>
 
-#include "../../core/board_descriptor.h"
+#include "../../core/board/descriptor.h"
 #include "../../hal/avr/gpio.h"
 
 template <char Name, typename Step, typename Dir, typename Enable, bool EnableActiveLow,

@@ -22,12 +22,12 @@
 #include <avr/interrupt.h>
 #include <avr/io.h>
 
-#include "../../core/phase_sequencer.h"
-#include "../../hal/avr/adc.h"
-#include "../../hal/avr/ext_int.h"
-#include "../../hal/avr/gpio.h"
-#include "../../hal/avr/uart.h"
-#include "../board.h"
+#include "../../../core/motor/phase_sequencer.h"
+#include "../../../hal/avr/adc.h"
+#include "../../../hal/avr/ext_int.h"
+#include "../../../hal/avr/gpio.h"
+#include "../../../hal/avr/uart.h"
+#include "../../board.h"
 #include "coil_drive.h"
 
 namespace {
@@ -39,7 +39,7 @@ static_assert(board::CoilB::port == board::CoilA::port && board::CoilC::port == 
               "the four coils are written in one port write");
 
 // Port bits of the four two-phase states in clockwise order, states[0] = AB.
-// Filled once at start-up from core/phase_sequencer.h, so the sequence has one
+// Filled once at start-up from core/motor/phase_sequencer.h, so the sequence has one
 // definition; the step interrupt then only moves a 2-bit index (a sequencer
 // step in the ISR cost 122 cycles entry to RETI, the table about half).
 uint8_t states[4];

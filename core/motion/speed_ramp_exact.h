@@ -32,7 +32,7 @@
 //   2^30 ticks (f v / a and f v / d < 2^30: 67 s at 16 MHz).
 #pragma once
 #include <stdint.h>
-#include "isqrt.h"
+#include "../math/isqrt.h"
 #include "speed_ramp.h"
 
 namespace am {

@@ -6,8 +6,8 @@
 #pragma once
 #include <stdint.h>
 
-#include "../../core/microstep.h"
-#include "../../core/phase_sequencer.h"
+#include "../../core/motor/microstep.h"
+#include "../../core/motor/phase_sequencer.h"
 #include "axis_set.h"
 
 enum class ModeResult : uint8_t { ok, no_axis, no_modes, unsupported };
