@@ -3,3 +3,7 @@
 // firmware names a board.
 #pragma once
 #include AVRMOTION_BOARD_HEADER
+
+// Every board lists its hardware claims; completing the type runs their
+// compile-time checks (hal/avr/claims.h).
+static_assert(sizeof(board::Claims) > 0, "board::Claims");

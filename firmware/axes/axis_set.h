@@ -10,6 +10,7 @@
 #include <stdint.h>
 
 #include "../../core/board/descriptor.h"
+#include "../../hal/avr/claims.h"
 
 // Whether an axis type's step edges come from the step timer's output-compare
 // pin (it declares `static constexpr bool timer_pulse = true`).
@@ -31,6 +32,17 @@ struct OwnMaxRate {
 template <typename A>
 struct OwnMaxRate<A, decltype(void(A::max_rate))> {
   static constexpr uint32_t value = A::max_rate;
+};
+
+// The hardware an axis type claims (`static constexpr uint32_t claims`, bits
+// of hal/avr/claims.h), or none.
+template <typename A, typename = void>
+struct OwnClaims {
+  static constexpr uint32_t value = 0;
+};
+template <typename A>
+struct OwnClaims<A, decltype(void(A::claims))> {
+  static constexpr uint32_t value = A::claims;
 };
 
 // Position bookkeeping: an axis type may count its position in finer units
@@ -56,6 +68,7 @@ template <>
 struct AxisSet<> {
   static constexpr uint8_t count = 0;
   static constexpr uint8_t timer_mask = 0;
+  using Claims = hal::ClaimSet<>;
   static void init() {}
   static void release() {}
   static void energise(uint8_t, uint8_t) {}
@@ -76,6 +89,8 @@ struct AxisSet<First, Rest...> {
   // Mask bits of the axes pulsed by the timer hardware.
   static constexpr uint8_t timer_mask = uint8_t((TimerPulsed<First>::value ? 1 : 0) | (Tail::timer_mask << 1));
   static_assert((timer_mask & (timer_mask - 1)) == 0, "one OC1A: at most one timer-pulsed axis");
+  // What the axes claim together: two axes on one PWM channel do not compile.
+  using Claims = hal::ClaimSet<OwnClaims<First>::value, Tail::Claims::all>;
 
   static void init() { First::init(); Tail::init(); }
   static void release() { First::release(); Tail::release(); }

@@ -59,6 +59,7 @@ template <char Name, uint8_t Number, typename Latch, typename EnableA, typename 
           uint32_t StepsPerMetre>
 struct ShieldStepper {
   static constexpr char name = Name;
+  static constexpr uint32_t claims = EnableA::claims | EnableB::claims;
   static am::ExcitationCursor cursor;
   static bool energised;
   static bool placed;  // the angle is where the rotor is (energised once)

@@ -9,6 +9,7 @@
 #include <stdint.h>
 
 #include "../../core/board/descriptor.h"
+#include "../../hal/avr/claims.h"
 #include "../../hal/avr/gpio.h"
 #include "../../hal/avr/step_timer.h"
 
@@ -17,6 +18,9 @@ struct TimerStepAxis {
   using Step = hal::Pin<HAL_OC1A_PORT, HAL_OC1A_BIT>;
   static constexpr char name = Name;
   static constexpr bool timer_pulse = true;
+  // Its STEP pin is the step timer's compare output (the engine claims the
+  // timer itself).
+  static constexpr uint32_t claims = hal::claim::oc1a;
   // The pulse must have ended before the next match raises STEP again. It
   // ends kTimerPulseCycles (32 on the Uno) after its match, later by
   // whatever holds the step vector off: a UART handler's prologue (they

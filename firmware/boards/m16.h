@@ -11,6 +11,7 @@
 // them. Axis U: a ULN2003 unipolar motor on PC2..PC5, which need JTAG off
 // (main() does that on every ATmega16/32).
 #pragma once
+#include "../../hal/avr/claims.h"
 #include "../../hal/avr/gpio.h"
 #include "../axes/axis_set.h"
 #include "../axes/step_dir_axis.h"
@@ -25,6 +26,13 @@ using Axes = AxisSet<StepDirAxis<'Z', Pin<'C', 0>, Pin<'C', 1>, Pin<'C', 7>, tru
 // 115200 at 16 MHz (UBRR 16 with U2X: 117647 baud, +2.1 %); at 8 MHz the
 // nearest divisor for 115200 gives 111111 (-3.5 %, outside the datasheet's
 // recommended +-2 %), so the 8 MHz image talks at 38400 (38462, +0.2 %).
+// Hardware claims (hal/avr/claims.h, checked when the image compiles): Timer1
+// is the step clock, the UART talks to the host. The seed's DC-servo
+// leadscrew drives its L298 from OC1A (PD5), which needs Timer1 for PWM: a
+// servo variant of this board cannot also claim Timer1 as a step clock.
+constexpr uint32_t kStepClock = hal::claim::timer1;
+using Claims = hal::ClaimSet<kStepClock, hal::claim::uart, Axes::Claims::all>;
+
 constexpr uint32_t kBaud = F_CPU >= 16000000UL ? 115200 : 38400;
 constexpr uint32_t kStepTimerHz = F_CPU;
 constexpr uint32_t kMaxStepRate = F_CPU / 800;  // 20 kHz at 16 MHz, 10 kHz at 8 MHz

@@ -12,6 +12,7 @@
 // A-, B- = a, b, c, d = PB0, PB2, PB1, PB3, so the simulator decodes the rotor
 // from PORTB.
 #pragma once
+#include "../../hal/avr/claims.h"
 #include "../../hal/avr/gpio.h"
 #include "../axes/axis_set.h"
 #include "../axes/unipolar_axis.h"
@@ -37,6 +38,10 @@ using Axes = AxisSet<UnipolarAxis<'M', CoilA, CoilB, CoilC, CoilD, 1000000>>;
 
 // Unused by this image (no UART: PD0/PD1 are DIR/ENABLE); descriptor.cpp
 // records it and the simulator's serial model needs a non-zero rate.
+// Hardware claims (hal/avr/claims.h, checked when the image compiles): STEP
+// on INT0, the chopper's current sense on the ADC, the UART. No step clock.
+using Claims = hal::ClaimSet<hal::claim::int0, hal::claim::adc, hal::claim::uart, Axes::Claims::all>;
+
 constexpr uint32_t kBaud = 115200;
 
 }  // namespace board

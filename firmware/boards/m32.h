@@ -9,6 +9,7 @@
 // ULN2003 unipolar motor on PB4..PB7 (ISP pins: free once flashed), counted
 // like the Uno's U axis.
 #pragma once
+#include "../../hal/avr/claims.h"
 #include "../../hal/avr/gpio.h"
 #include "../axes/axis_set.h"
 #include "../axes/step_dir_axis.h"
@@ -22,6 +23,12 @@ using Axes = AxisSet<StepDirAxis<'X', Pin<'C', 0>, Pin<'C', 1>, Pin<'B', 0>, tru
                      StepDirAxis<'Z', Pin<'C', 4>, Pin<'C', 5>, Pin<'B', 2>, true, 1000000>,
                      StepDirAxis<'E', Pin<'C', 6>, Pin<'C', 7>, Pin<'B', 3>, true, 1000000>,
                      UnipolarAxis<'U', Pin<'B', 4>, Pin<'B', 5>, Pin<'B', 6>, Pin<'B', 7>, 4096>>;
+
+// Hardware claims (hal/avr/claims.h, checked when the image compiles): Timer1
+// is the step clock, the UART talks to the host. Timer0 and Timer2 (OC2 =
+// PD7, the heater's MOSFET) are free.
+constexpr uint32_t kStepClock = hal::claim::timer1;
+using Claims = hal::ClaimSet<kStepClock, hal::claim::uart, Axes::Claims::all>;
 
 constexpr uint32_t kBaud = 115200;
 constexpr uint32_t kStepTimerHz = F_CPU;

@@ -11,6 +11,7 @@
 // D9 (OC1A, timed by the step timer's hardware), DIR on D10, ENABLE on A4
 // (active low); 400 steps per mm (16 microsteps, 8 mm lead).
 #pragma once
+#include "../../hal/avr/claims.h"
 #include "../../hal/avr/gpio.h"
 #include "../../hal/avr/latch595.h"
 #include "../../hal/avr/pwm8.h"
@@ -29,6 +30,13 @@ using Axes = AxisSet<ShieldStepper<'X', 1, Latch, hal::Pwm8<2, 'A'>, hal::Pwm8<2
                      ShieldStepper<'Y', 2, Latch, hal::Pwm8<0, 'A'>, hal::Pwm8<0, 'B'>, 25000>,
                      UnipolarAxis<'U', Pin<'C', 0>, Pin<'C', 1>, Pin<'C', 2>, Pin<'C', 3>, 4096>,
                      TimerStepAxis<'Z', Pin<'B', 2>, Pin<'C', 4>, true, 400000>>;
+
+// Hardware claims (hal/avr/claims.h, checked when the image compiles): Timer1
+// is the step clock and its OC1A the Z axis's STEP; Timers 0 and 2 drive the
+// shield's enable PWM (the axes claim them); the UART talks to the host.
+// Every timer is taken: this board has no free-running time base yet.
+constexpr uint32_t kStepClock = hal::claim::timer1;
+using Claims = hal::ClaimSet<kStepClock, hal::claim::uart, Axes::Claims::all>;
 
 constexpr uint32_t kBaud = 115200;
 constexpr uint32_t kStepTimerHz = F_CPU;

@@ -6,6 +6,8 @@
 #include "../../hal/avr/step_timer.h"
 #include "../board.h"
 
+static_assert(board::kStepClock == hal::claim::timer1, "the step engine runs on Timer1: the board must claim it");
+
 namespace engine {
 namespace {
 

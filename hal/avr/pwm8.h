@@ -18,6 +18,7 @@
 #pragma once
 #include <stdint.h>
 
+#include "claims.h"
 #include "gpio.h"
 
 #if defined(__AVR_ATmega328P__)
@@ -56,6 +57,10 @@ struct Pwm8 {
   static constexpr uint16_t ocr = Channel == 'A' ? T::ocra : T::ocrb;
   // COMnx1:0 = 10, non-inverting: set at BOTTOM, clear on compare match.
   static constexpr uint8_t com = Channel == 'A' ? 0x80 : 0x20;
+  // The timer's shared 8-bit PWM set-up and this channel's pin.
+  static constexpr uint32_t claims = (Timer == 0 ? claim::timer0_pwm8 : claim::timer2_pwm8) |
+                                     (Timer == 0 ? (Channel == 'A' ? claim::oc0a : claim::oc0b)
+                                                 : (Channel == 'A' ? claim::oc2a : claim::oc2b));
 
   static void init() {
     set(0);
