@@ -1,4 +1,4 @@
-// Multi-axis linear DDA (Bresenham): a block that moves up to four axes in a
+// Multi-axis linear DDA (Bresenham): a block that moves up to eight axes in a
 // fixed ratio, one event at a time, ending exactly on its target step.
 //
 // Contract
@@ -52,7 +52,7 @@ enum class DdaPhase : uint8_t { nearest, late };
 
 template <uint8_t Axes>
 class LineDda {
-  static_assert(Axes >= 1 && Axes <= 4, "LineDda drives 1..4 axes");
+  static_assert(Axes >= 1 && Axes <= 8, "LineDda drives 1..8 axes (one bit each in StepEvent)");
 
  public:
   static constexpr uint32_t kMaxCount = 0x7FFFFFFFul;

@@ -10,7 +10,9 @@
 //
 //   `chain` is the consumer's own mark (make() leaves it 0): the AVR engine
 //   sets it on a segment that its assembly fast path may switch to without
-//   the C handler (docs/step-engine.md).
+//   the C handler (docs/step-engine.md). `block` names the coordinated block
+//   (its interpolator) whose events a segment of several axes times: which
+//   of `axes` step at each event is that interpolator's answer.
 //
 //   The interval is stored pre-split for a 16-bit timer: `wraps` periods of
 //   wrap_compare + 1 ticks followed by a final period of compare + 1 ticks.
@@ -30,6 +32,7 @@ struct StepSegment {
   uint8_t axes;           // which axes step
   uint8_t dirs;           // forward bits
   uint8_t chain;          // see the contract
+  uint8_t block;          // see the contract
 
   // Splits `interval` ticks (1 .. kMaxSegmentInterval) into wraps + 1 timer
   // periods of near-equal length. Equal periods, rather than full 65536-tick
@@ -46,6 +49,7 @@ struct StepSegment {
     s.axes = axes;
     s.dirs = dirs;
     s.chain = 0;
+    s.block = 0;
     return s;
   }
   uint32_t interval() const { return uint32_t(wraps) * (wrap_compare + 1u) + compare + 1u; }

@@ -8,7 +8,9 @@
 //   terminating NUL and never writes outside `out`. Keywords and axis letters
 //   are case-insensitive; words are separated by spaces or tabs.
 //
-//   MOVE <axis><steps> [F<rate>] [A<accel>] [D<decel>]   relative move
+//   MOVE <axis><steps>... [F<rate>] [A<accel>] [D<decel>]
+//        relative move of one or more axes together (each letter once; F,
+//        A and D are those of the axis with the most steps)
 //   POS                                                   report positions
 //   RELEASE                                               coils / drivers off
 //   WAIT                                                  answer once idle
@@ -31,15 +33,20 @@ enum class ParseError : uint8_t {
   out_of_range,     // number beyond the 32-bit range the protocol allows
   duplicate_word,
   missing_axis,     // MOVE without an axis word
-  two_axes,         // MOVE names more than one axis
+  two_axes,         // MODE names more than one axis
   unexpected_word,  // a word this command does not take
   bad_mode,         // MODE number other than 0, 1, 2, 16, 32, 64
 };
 
+constexpr uint8_t kMoveAxes = 5;  // X Y Z E U
+
 struct Command {
   CommandKind kind;
-  char axis;        // 'X', 'Y', 'Z', 'E' or 'U'
-  int32_t steps;
+  char axis;        // 'X', 'Y', 'Z', 'E' or 'U': the first axis word (MODE's only one)
+  int32_t steps;    // its number
+  uint8_t axis_count;             // MOVE: axis words given, in line order:
+  char axes[kMoveAxes];           //   their letters
+  int32_t axis_steps[kMoveAxes];  //   and their steps
   uint32_t rate;    // steps/s
   uint32_t accel;   // steps/s^2
   uint32_t decel;   // steps/s^2
@@ -91,7 +98,7 @@ inline ParseError parse_command(const char* p, Command& out) {
   using namespace detail;
   while (blank(*p)) ++p;
   if (!*p) return ParseError::empty;
-  out = Command{CommandKind::move, 0, 0, 0, 0, 0, 0};
+  out = Command{CommandKind::move, 0, 0, 0, {}, {}, 0, 0, 0, 0};
   if (keyword(p, "POS")) out.kind = CommandKind::position;
   else if (keyword(p, "RELEASE")) out.kind = CommandKind::release;
   else if (keyword(p, "WAIT")) out.kind = CommandKind::wait;
@@ -110,10 +117,16 @@ inline ParseError parse_command(const char* p, Command& out) {
     if (e != ParseError::none) return e;
     uint8_t bit;
     if (is_axis(letter)) {
-      if (seen & 1) return out.axis == letter ? ParseError::duplicate_word : ParseError::two_axes;
+      for (uint8_t i = 0; i < out.axis_count; ++i)
+        if (out.axes[i] == letter) return ParseError::duplicate_word;
+      if (out.kind == CommandKind::mode && (seen & 1)) return ParseError::two_axes;
       bit = 1;
-      out.axis = letter;
-      out.steps = value;
+      if (!(seen & 1)) {
+        out.axis = letter;
+        out.steps = value;
+      }
+      out.axes[out.axis_count] = letter;
+      out.axis_steps[out.axis_count++] = value;
     } else if (out.kind == CommandKind::mode) {
       return ParseError::unexpected_word;  // MODE takes its axis word only
     } else if (letter == 'F' || letter == 'A' || letter == 'D') {

@@ -4,7 +4,8 @@
 //
 // Every axis type provides, as static members:
 //   name, descriptor(), init(), energise(), release(),
-//   set_direction(bool forward), pulse_begin(bool forward), pulse_end().
+//   set_direction(bool forward), pulse_begin(bool forward), pulse_end(),
+//   and optionally pulse_commit() (see OwnCommit).
 // The set also yields the board descriptor's axis table (descriptor.cpp).
 #pragma once
 #include <stdint.h>
@@ -45,6 +46,17 @@ struct OwnClaims<A, decltype(void(A::claims))> {
   static constexpr uint32_t value = A::claims;
 };
 
+// A step an axis type stages in pulse_begin and shows in pulse_commit
+// (`static void pulse_commit()`), or nothing to commit.
+template <typename A, typename = void>
+struct OwnCommit {
+  static void run() {}
+};
+template <typename A>
+struct OwnCommit<A, decltype(void(&A::pulse_commit))> {
+  static void run() { A::pulse_commit(); }
+};
+
 // Position bookkeeping: an axis type may count its position in finer units
 // than its steps (`static int32_t units_for(int32_t steps, bool idle)` and
 // `static constexpr uint8_t units_per_full_step`: the coil-driven axes count
@@ -73,7 +85,8 @@ struct AxisSet<> {
   static void release() {}
   static void energise(uint8_t, uint8_t) {}
   static void set_direction(uint8_t, uint8_t, uint8_t) {}
-  static void pulse_begin(uint8_t, uint8_t, uint8_t) {}
+  static void stage(uint8_t, uint8_t, uint8_t) {}
+  static void commit(uint8_t, uint8_t) {}
   static void pulse_end(uint8_t, uint8_t) {}
   static int8_t index_of(char, uint8_t = 0) { return -1; }
   static char name_at(uint8_t) { return '?'; }
@@ -105,9 +118,19 @@ struct AxisSet<First, Rest...> {
     if (axes & bit) First::set_direction(dirs & bit);
     Tail::set_direction(axes, dirs, uint8_t(bit << 1));
   }
-  static void pulse_begin(uint8_t axes, uint8_t dirs, uint8_t bit = 1) {
+  // Every stepping axis stages its step, then each commits it (an output
+  // several axes share, the shield's latch, is written once).
+  static void pulse_begin(uint8_t axes, uint8_t dirs) {
+    stage(axes, dirs, 1);
+    commit(axes, 1);
+  }
+  static void stage(uint8_t axes, uint8_t dirs, uint8_t bit) {
     if (axes & bit) First::pulse_begin(dirs & bit);
-    Tail::pulse_begin(axes, dirs, uint8_t(bit << 1));
+    Tail::stage(axes, dirs, uint8_t(bit << 1));
+  }
+  static void commit(uint8_t axes, uint8_t bit) {
+    if (axes & bit) OwnCommit<First>::run();
+    Tail::commit(axes, uint8_t(bit << 1));
   }
   static void pulse_end(uint8_t axes, uint8_t bit = 1) {
     if (axes & bit) First::pulse_end();

@@ -41,9 +41,12 @@
 template <typename Latch>
 struct ShieldLatch {
   static uint8_t image;
+  static bool dirty;  // a step changed the image; the latch has not seen it
 };
 template <typename Latch>
 uint8_t ShieldLatch<Latch>::image = 0;
+template <typename Latch>
+bool ShieldLatch<Latch>::dirty = false;
 
 // One table per shield stepper number, in flash.
 template <uint8_t Number>
@@ -120,10 +123,18 @@ struct ShieldStepper {
     return true;
   }
   static void set_direction(bool) {}
+  // A step sets its duties and its four bits of the latch image; the latch
+  // is shifted out once per step event, after every axis has staged its
+  // step, so both steppers of a coordinated move change in one write.
   static void pulse_begin(bool forward) {
     const uint8_t a = cursor.step(forward);
-    if (cursor.microstepping()) show(&table().micro[a]);
-    else show(&table().full[a >> 5]);
+    if (cursor.microstepping()) stage(&table().micro[a]);
+    else stage(&table().full[a >> 5]);
+  }
+  static void pulse_commit() {
+    if (!ShieldLatch<Latch>::dirty) return;
+    ShieldLatch<Latch>::dirty = false;
+    Latch::write(ShieldLatch<Latch>::image);
   }
   static void pulse_end() {}
 
@@ -142,16 +153,24 @@ struct ShieldStepper {
 
   // Duties first: OCR writes take effect at the next PWM period anyway, the
   // latch at once, so the new coils never see a stale duty for long.
-  static void show(const am::ExcitationEntry* e) {
+  static void stage(const am::ExcitationEntry* e) {
     EnableA::set(pgm_read_byte(&e->pwm_a));
     EnableB::set(pgm_read_byte(&e->pwm_b));
-    write_latch(pgm_read_byte(&e->bits));
+    stage_bits(pgm_read_byte(&e->bits));
   }
-  static void write_latch(uint8_t bits) {
+  static void stage_bits(uint8_t bits) {
     constexpr uint8_t mask = am::shield_wiring(Number).mask();
     uint8_t& image = ShieldLatch<Latch>::image;
     image = uint8_t((image & ~mask) | bits);
-    Latch::write(image);
+    ShieldLatch<Latch>::dirty = true;
+  }
+  static void show(const am::ExcitationEntry* e) {
+    stage(e);
+    pulse_commit();
+  }
+  static void write_latch(uint8_t bits) {
+    stage_bits(bits);
+    pulse_commit();
   }
 };
 

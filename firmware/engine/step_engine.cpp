@@ -25,7 +25,8 @@ constexpr uint8_t kPulsePadTurns =
 static_assert(offsetof(am::StepSegment, count) == 0, "segment layout");
 static_assert(offsetof(am::StepSegment, compare) == 2, "segment layout");
 static_assert(offsetof(am::StepSegment, chain) == 9, "segment layout");
-static_assert(sizeof(am::StepSegment) == 10, "segment layout: the fast path steps by 10");
+static_assert(sizeof(am::StepSegment) == 11, "segment layout");
+static_assert(kBlockRing == 4, "block_slot lists four slots");
 static_assert(Queue::slots_offset() == 0, "queue layout");
 
 }  // namespace
@@ -36,9 +37,11 @@ engine::Queue step_queue asm("step_queue");
 // Steps of the current segment after the one the next match makes.
 volatile uint16_t step_remaining asm("step_remaining");
 volatile uint8_t step_dirs asm("step_dirs");  // the current segment's direction bits
-// Who takes the next match: 0 the C handler; 1 the fast path, a step with
+// Who takes the next match: 0 a C handler; 1 the fast path, a step with
 // more to follow; 2 the fast path, the segment's last step.
 volatile uint8_t step_fast asm("step_fast");
+// Which C handler: the segment's axes step together as its block says.
+volatile uint8_t step_coordinated asm("step_coordinated");
 volatile uint8_t step_armed asm("step_armed");  // the next match raises the timer STEP
 // The ring index after the current segment and its slot, kept ready so the
 // fast path's segment switch reads no index arithmetic before its compare.
@@ -57,6 +60,13 @@ uint16_t wrap_compare;
 uint8_t wraps;
 uint8_t wraps_left;
 uint8_t axes;
+Dda* dda;  // the interpolator of a coordinated segment (step_coordinated)
+
+// Block serials: the last one handed out, the one the interrupt is in.
+Dda blocks[kBlockRing];
+Dda* const block_slot[kBlockRing] = {&blocks[0], &blocks[1], &blocks[2], &blocks[3]};
+uint8_t block_serial;
+volatile uint8_t running_block;
 
 // The last segment pushed (main loop only), for the chain mark.
 uint8_t pushed_axes;
@@ -83,11 +93,13 @@ inline uint16_t first_period(const am::StepSegment& s) {
   return s.wraps ? s.wrap_compare : s.compare;
 }
 
-// Points the fast path's look-ahead at the segment after the front.
-inline void track_next() {
-  const uint8_t next = uint8_t(step_queue.tail() + 1);
-  step_next_index = next;
-  step_next = step_queue.slot(next);
+// Points the fast path's look-ahead at the segment after the front `s`
+// (no index arithmetic: a multiplication here would cost the C handlers
+// registers on every step).
+inline void track_next(const am::StepSegment& s) {
+  step_next_index = uint8_t(step_queue.tail() + 1);
+  const am::StepSegment* next = &s + 1;
+  step_next = next == step_queue.slot(0) + kQueueSize ? step_queue.slot(0) : next;
 }
 
 // Copies the queue's front segment into the fields the interrupt reads and
@@ -95,6 +107,11 @@ inline void track_next() {
 // whose first interval is long, so setting them after the period has been
 // programmed still leaves the drivers their set-up time.
 inline void load_front(const am::StepSegment& s) {
+  step_coordinated = (s.axes & (s.axes - 1)) != 0;
+  if (step_coordinated) {
+    running_block = s.block;
+    dda = block_slot[s.block & (kBlockRing - 1)];
+  }
   step_remaining = uint16_t(s.count - 1);
   step_compare = s.compare;
   wrap_compare = s.wrap_compare;
@@ -104,7 +121,7 @@ inline void load_front(const am::StepSegment& s) {
   step_dirs = s.dirs;
   step_fast = fast_eligible(s) ? (s.count == 1 ? 2 : 1) : 0;
   board::Axes::set_direction(s.axes, s.dirs);
-  track_next();
+  track_next(s);
 }
 
 // The queue ran dry: stop the clock first (a pulse may be armed), then reset.
@@ -139,6 +156,18 @@ inline void arm_if_step_period() {
 void init() { hal::step_timer::init(); }
 
 bool queue_full() { return step_queue.full(); }
+
+bool block_available() {
+  // In use: the running block and every later one already handed out.
+  return !busy() || uint8_t(block_serial + 1 - running_block) < kBlockRing;
+}
+
+Dda* begin_block(uint8_t& serial) {
+  const uint8_t next = uint8_t(block_serial + 1);
+  block_serial = next;
+  serial = next;
+  return &blocks[next & (kBlockRing - 1)];
+}
 
 bool busy() { return running || !step_queue.empty(); }
 
@@ -200,10 +229,18 @@ ISR(TIMER1_COMPA_vect, ISR_NAKED) {
       "cpi r24, 1\n\t"                  // 1
       "breq 2f\n\t"                     // 1 / 2 taken: a step with more to follow
       "brcc 4f\n\t"                     // 1 / 2 taken: the segment's last step
+      "lds r24, step_coordinated\n\t"
+      "tst r24\n\t"
+      "brne 6f\n\t"
       "pop r24\n\t"
       "out __SREG__, r24\n\t"
       "pop r24\n\t"
       "jmp __vector_step_slow\n\t"
+      "6:\n\t"
+      "pop r24\n\t"
+      "out __SREG__, r24\n\t"
+      "pop r24\n\t"
+      "jmp __vector_step_coordinated\n\t"
       // Another step of this segment follows: re-arm and count.
       "2:\n\t"
       "ldi r24, %[set]\n\t"             // 1
@@ -295,17 +332,22 @@ ISR(TIMER1_COMPA_vect, ISR_NAKED) {
 extern "C" void __vector_step_switch() __attribute__((signal, used, externally_visible));
 void __vector_step_switch() { engine::next_segment(); }
 
-// The general handler: one more period of a long interval, or a step of any
+// The general handlers: one more period of a long interval, or a step of any
 // axis. A timer-pulsed axis has had its whole pulse already (the match raised
 // it, the vector above ended it). For the other axes everything before
 // pulse_begin is the same on every step, so their edges trail the match by a
 // constant number of cycles; their step lines stay high for the bookkeeping
 // plus the board's pad, which together meet the drivers' minimum pulse width.
-// (Named __vector_* so avr-gcc accepts the signal attribute: a full interrupt
-// prologue and a RETI, entered by the jump above.)
-extern "C" void __vector_step_slow() __attribute__((signal, used, externally_visible));
-void __vector_step_slow() {
-  using namespace engine;
+// A coordinated segment asks its block's interpolator which axes step; it
+// has its own vector, so a one-axis step does not pay for the registers the
+// interpolator needs. (Named __vector_* so avr-gcc accepts the signal
+// attribute: a full interrupt prologue and a RETI, entered by the jumps
+// above.)
+namespace engine {
+namespace {
+
+template <bool Coordinated>
+inline void step_event() {
   if (wraps_left) {
     if (--wraps_left == 0) {
       hal::step_timer::set_compare(step_compare);
@@ -313,17 +355,27 @@ void __vector_step_slow() {
     }
     return;
   }
-  board::Axes::pulse_begin(axes, step_dirs);
+  const uint8_t stepping = Coordinated ? dda->next().axes : axes;
+  board::Axes::pulse_begin(stepping, step_dirs);
   if (step_remaining != 0) {
     step_remaining = uint16_t(step_remaining - 1);
     wraps_left = wraps;
     hal::step_timer::set_compare(wraps ? wrap_compare : step_compare);
     arm_if_step_period();
     __builtin_avr_delay_cycles(board::kStepPulsePadCycles);
-    board::Axes::pulse_end(axes);
+    board::Axes::pulse_end(stepping);
     return;
   }
   __builtin_avr_delay_cycles(board::kStepPulsePadCycles);
-  board::Axes::pulse_end(axes);
+  board::Axes::pulse_end(stepping);
   next_segment();
 }
+
+}  // namespace
+}  // namespace engine
+
+extern "C" void __vector_step_slow() __attribute__((signal, used, externally_visible));
+void __vector_step_slow() { engine::step_event<false>(); }
+
+extern "C" void __vector_step_coordinated() __attribute__((signal, used, externally_visible));
+void __vector_step_coordinated() { engine::step_event<true>(); }

@@ -24,11 +24,26 @@
 #pragma once
 #include <stdint.h>
 
+#include "../../core/motion/line_dda.h"
 #include "../../core/motion/step_queue.h"
+#include "../board.h"
 
 namespace engine {
 
 constexpr uint8_t kQueueSize = 16;
+
+// Coordinated blocks: a segment of several axes names a block (its `block`
+// byte, a serial number), and at each of its events that block's
+// interpolator says which axes step. The main loop sets a block up with
+// begin_block() before it pushes the block's segments; a slot is reused only
+// once the interrupt has moved past every block that used it. One-axis
+// segments need no block.
+constexpr uint8_t kBlockRing = 4;
+using Dda = am::LineDda<board::Axes::count>;
+// Whether a slot is free for a new block; then begin_block() hands it out
+// with the serial its segments carry.
+bool block_available();
+Dda* begin_block(uint8_t& serial);
 
 void init();
 bool push(am::StepSegment segment);

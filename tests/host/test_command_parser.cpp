@@ -59,7 +59,7 @@ TEST(CommandParser, MalformedLinesAreNamed) {
   EXPECT_EQ(parse("MOVE X--1"), ParseError::bad_number);
   EXPECT_EQ(parse("MOVE 10"), ParseError::bad_word);
   EXPECT_EQ(parse("MOVE X10 X20"), ParseError::duplicate_word);
-  EXPECT_EQ(parse("MOVE X10 Y20"), ParseError::two_axes);
+  EXPECT_EQ(parse("MOVE X10 Y20 X3"), ParseError::duplicate_word);
   EXPECT_EQ(parse("MOVE X10 F1 F2"), ParseError::duplicate_word);
   EXPECT_EQ(parse("MOVE X10 Q5"), ParseError::unexpected_word);
   EXPECT_EQ(parse("MOVE X10 F-5"), ParseError::out_of_range);
@@ -95,4 +95,19 @@ TEST(CommandParser, ModeTakesOneAxisAndAModeNumber) {
   EXPECT_EQ(parse("MODE X16 Y16"), ParseError::two_axes);
   EXPECT_EQ(parse("MODE X16 F100"), ParseError::unexpected_word);
   EXPECT_EQ(parse("MODEX16"), ParseError::unknown_command);
+}
+
+TEST(CommandParser, MoveTakesEveryAxisOnceInLineOrder) {
+  Command c;
+  ASSERT_EQ(parse("MOVE Y-3 X10 U7 E0 Z2147483647 F9", c), ParseError::none);
+  ASSERT_EQ(c.axis_count, 5u);
+  const char letters[] = {'Y', 'X', 'U', 'E', 'Z'};
+  const int32_t steps[] = {-3, 10, 7, 0, 2147483647};
+  for (int i = 0; i < 5; ++i) {
+    EXPECT_EQ(c.axes[i], letters[i]);
+    EXPECT_EQ(c.axis_steps[i], steps[i]);
+  }
+  EXPECT_EQ(c.axis, 'Y');
+  EXPECT_EQ(c.steps, -3);
+  EXPECT_EQ(parse("MOVE X1 x2"), ParseError::duplicate_word);
 }

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -266,4 +267,165 @@ TEST(Invariants, TopSpeedRampsAtTheAccelerationLimitStayExact) {
       ASSERT_EQ(z[i], due) << line << ": step " << i;
     }
   }
+}
+
+namespace {
+
+// Several axes in one MOVE: a coordinated block. Every axis ends on its
+// target (pins = command = POS), the dominant axis (most steps) runs the
+// ramp's schedule, and every other axis's k-th step falls on the dominant
+// axis's event ceil((k N - h) / n), h = floor(N / 2): the Bresenham schedule
+// of core/motion/line_dda.h, here computed independently from its formula.
+struct CoordinatedCase {
+  const char* image;
+  const char* axes;      // the letters taking part
+  const int* pin_units;  // per letter: decoder units per step
+  int64_t jitter;        // allowed spread of the dominant axis's lateness, cycles
+};
+
+void check_coordinated(const CoordinatedCase& c, uint64_t seed, size_t count) {
+  sim::Machine m(simtest::image(c.image));
+  const uint32_t f_cpu = m.f_cpu();
+  const size_t n_axes = std::strlen(c.axes);
+  struct Coordinated {
+    std::vector<int32_t> steps;
+    uint32_t rate, accel, decel;
+  };
+  std::vector<Coordinated> moves;
+  uint64_t state = seed;
+  while (moves.size() < count) {
+    Coordinated mv;
+    size_t moving = 0;
+    for (size_t a = 0; a < n_axes; ++a) {
+      const bool on = next_random(state) % 4 != 0;
+      const int32_t n = on ? kSteps[next_random(state) % 7] * (next_random(state) % 2 ? 1 : -1) : 0;
+      mv.steps.push_back(n);
+      moving += n != 0;
+    }
+    if (moving < 2) continue;
+    mv.rate = kRates[next_random(state) % 6];
+    mv.accel = kAccels[1 + next_random(state) % 7];
+    mv.decel = next_random(state) % 2 ? mv.accel : 1612;
+    uint32_t dominant = 0;
+    for (int32_t n : mv.steps) dominant = std::max(dominant, uint32_t(std::abs(n)));
+    const am::RampConfig cfg{f_cpu, std::min(mv.rate, 20000u), std::min(mv.accel, 400000u), std::min(mv.decel, 400000u)};
+    if (seconds(schedule(dominant, cfg), f_cpu) > 0.05) continue;
+    moves.push_back(mv);
+  }
+  for (const Coordinated& mv : moves) {
+    std::string line = "MOVE";
+    for (size_t a = 0; a < n_axes; ++a) line += std::string(" ") + c.axes[a] + std::to_string(mv.steps[a]);
+    line += " F" + std::to_string(mv.rate) + " A" + std::to_string(mv.accel) + " D" + std::to_string(mv.decel);
+    m.serial().add_line(line);
+    m.serial().add_line("NOP");
+    m.serial().add_line("POS");
+  }
+  ASSERT_EQ(m.run_script(uint64_t(60) * f_cpu), sim::RunEnd::done);
+
+  const std::vector<std::string>& got = m.serial().received();
+  const std::vector<sim::Response>& resp = m.serial().responses();
+  size_t at = 1;
+  int64_t worst = 0;
+  std::vector<size_t> stamp(n_axes, 0);
+  std::vector<int64_t> commanded(n_axes, 0);
+  for (size_t k = 0; k < moves.size(); ++k) {
+    const Coordinated& mv = moves[k];
+    SCOPED_TRACE(testing::Message() << c.image << " move " << k << ": " << resp.at(3 * k).line);
+    am::RampConfig cfg{f_cpu, mv.rate, mv.accel, mv.decel};
+    for (; got.at(at).rfind("warning: ", 0) == 0; ++at) {
+      const std::string& w = got[at];
+      uint32_t& value = w[9] == 'F' ? cfg.max_rate : w[9] == 'A' ? cfg.accel : cfg.decel;
+      value = uint32_t(std::stoul(w.substr(22)));
+    }
+    ASSERT_EQ(got.at(at++), "ok");
+    ASSERT_EQ(got.at(at++).rfind("error:", 0), 0u);
+    const std::string pos = got.at(at++);
+    ASSERT_EQ(got.at(at++), "ok");
+    const uint64_t end = resp.at(3 * k + 2).answer_cycle;
+
+    // Each axis's pulses of this move.
+    uint32_t events = 0;
+    size_t dominant = 0;
+    std::vector<std::vector<uint64_t>> pulses(n_axes);
+    for (size_t a = 0; a < n_axes; ++a) {
+      const sim::AxisTrace& trace = *m.axis(c.axes[a]);
+      int64_t moved = 0;
+      while (stamp[a] < trace.step_cycles.size() && trace.step_cycles[stamp[a]] <= end) {
+        pulses[a].push_back(trace.step_cycles[stamp[a]]);
+        moved += trace.step_deltas[stamp[a]++];
+      }
+      commanded[a] += mv.steps[a];
+      EXPECT_EQ(moved, int64_t(mv.steps[a]) * c.pin_units[a]) << c.axes[a];
+      EXPECT_EQ(pulses[a].size(), size_t(std::abs(mv.steps[a]))) << c.axes[a];
+      EXPECT_DOUBLE_EQ(reported(pos, c.axes[a]), double(commanded[a])) << c.axes[a];
+      if (uint32_t(std::abs(mv.steps[a])) > events) {
+        events = uint32_t(std::abs(mv.steps[a]));
+        dominant = a;
+      }
+    }
+    bool counts_ok = true;
+    for (size_t a = 0; a < n_axes; ++a) counts_ok = counts_ok && pulses[a].size() == size_t(std::abs(mv.steps[a]));
+    if (!counts_ok) continue;
+
+    // The dominant axis on the schedule; no event faster than F allows.
+    const std::vector<uint32_t> expected = schedule(events, cfg);
+    const std::vector<uint64_t>& dom = pulses[dominant];
+    uint64_t due = dom[0];
+    int64_t lo = 0, hi = 0;
+    for (size_t i = 1; i < dom.size(); ++i) {
+      EXPECT_GE(expected[i], f_cpu / cfg.max_rate) << "event " << i;
+      due += expected[i];
+      lo = std::min(lo, int64_t(dom[i]) - int64_t(due));
+      hi = std::max(hi, int64_t(dom[i]) - int64_t(due));
+    }
+    worst = std::max(worst, hi - lo);
+    EXPECT_LE(hi - lo, c.jitter) << "dominant " << c.axes[dominant] << " wanders " << lo << ".." << hi;
+
+    // Every other axis on the dominant's Bresenham events.
+    for (size_t a = 0; a < n_axes; ++a) {
+      const uint32_t n = uint32_t(std::abs(mv.steps[a]));
+      if (a == dominant || n == 0) continue;
+      const uint64_t h = events / 2;
+      for (uint32_t j = 1; j <= n; ++j) {
+        const uint64_t event = (uint64_t(j) * events - h + n - 1) / n;  // 1-based
+        // The minor's edge is made in the same interrupt as the dominant's,
+        // before or after it by the axis order: the nearest dominant edge.
+        const uint64_t t = pulses[a][j - 1];
+        size_t nearest = 0;
+        for (size_t i = 1; i < dom.size(); ++i)
+          if ((t > dom[i] ? t - dom[i] : dom[i] - t) < (t > dom[nearest] ? t - dom[nearest] : dom[nearest] - t)) nearest = i;
+        ASSERT_EQ(nearest + 1, event) << c.axes[a] << " step " << j << " of " << n << " in " << events;
+      }
+    }
+  }
+  std::printf("%s %s coordinated: %zu moves, largest spread of the dominant axis %lld cycles\n", c.image, c.axes,
+              moves.size(), (long long)worst);
+}
+
+// A coordinated event's outputs leave in axis order, the shield's latch once
+// every axis has staged its step: on the Uno a dominant axis's edge moves by
+// the work of the axes stepping before it (shield staging about 40 cycles
+// each, a ULN2003 step about 70), 154 cycles seen (docs/step-engine.md).
+constexpr int64_t kCoordinatedCoilJitter = 192;
+
+const int kUnits1[] = {1, 1, 1, 1, 2};
+const int kShield[] = {2, 2, 2};
+const int kM16[] = {1, 2};
+
+}  // namespace
+
+TEST(Invariants, M32CoordinatedBlocks) { check_coordinated({"m32", "XYZEU", kUnits1, kSoftwareJitter}, 21, 60); }
+TEST(Invariants, UnoCoordinatedShieldAndUln2003) {
+  check_coordinated({"uno", "XYU", kShield, kCoordinatedCoilJitter}, 22, 40);
+}
+TEST(Invariants, M16CoordinatedBlocks) { check_coordinated({"m16", "ZU", kM16, kSoftwareJitter}, 23, 40); }
+
+TEST(Invariants, TheTimerPulsedAxisMovesAlone) {
+  auto m = simtest::run("uno", {"MOVE Z10 X5", "MOVE X5 Z0", "POS"});
+  const std::vector<sim::Response>& r = m->serial().responses();
+  ASSERT_EQ(r.size(), 3u);
+  EXPECT_EQ(r[0].answer, "error: the hardware-timed axis moves alone");
+  EXPECT_EQ(r[1].answer, "ok");  // Z0 takes no part
+  EXPECT_TRUE(m->axis('Z')->step_cycles.empty());
+  EXPECT_EQ(m->axis('X')->step_cycles.size(), 5u);
 }

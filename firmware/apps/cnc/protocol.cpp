@@ -39,7 +39,7 @@ const char* parse_error_text(am::ParseError e) {
     case am::ParseError::out_of_range: return PSTR("number out of range");
     case am::ParseError::duplicate_word: return PSTR("word given twice");
     case am::ParseError::missing_axis: return PSTR("MOVE needs an axis word");
-    case am::ParseError::two_axes: return PSTR("MOVE takes one axis");
+    case am::ParseError::two_axes: return PSTR("MODE takes one axis");
     case am::ParseError::unexpected_word: return PSTR("word not allowed here");
     default:  // bad_mode (none and empty never come here)
       return PSTR("mode must be 0, 1, 2, 16, 32 or 64");
@@ -83,19 +83,27 @@ constexpr int32_t kMaxMoveSteps = 16777216;
 bool execute(const am::Command& c) {
   switch (c.kind) {
     case am::CommandKind::move: {
-      const int8_t axis = board::Axes::index_of(c.axis);
-      if (axis < 0) {
-        error(PSTR("no such axis on this board"));
-        return true;
+      planner::Move move{};
+      for (uint8_t k = 0; k < c.axis_count; ++k) {
+        const int8_t axis = board::Axes::index_of(c.axes[k]);
+        if (axis < 0) {
+          error(PSTR("no such axis on this board"));
+          return true;
+        }
+        if (c.axis_steps[k] > kMaxMoveSteps || c.axis_steps[k] < -kMaxMoveSteps) {
+          error(PSTR("move too long (max 16777216 steps)"));
+          return true;
+        }
+        move.steps[axis] = c.axis_steps[k];
       }
-      if (!planner::ready_for(uint8_t(axis))) return false;
-      if (c.steps > kMaxMoveSteps || c.steps < -kMaxMoveSteps) {
-        error(PSTR("move too long (max 16777216 steps)"));
-        return true;
-      }
-      if (!planner::fits(uint8_t(axis), c.steps)) {
-        error(PSTR("move would leave the position range"));
-        return true;
+      if (!planner::ready_for(move)) return false;
+      switch (planner::check(move)) {
+        case planner::Refusal::none: break;
+        case planner::Refusal::nothing_to_do: ok(); return true;
+        case planner::Refusal::position_range: error(PSTR("move would leave the position range")); return true;
+        case planner::Refusal::timer_axis_not_alone:
+          error(PSTR("the hardware-timed axis moves alone"));
+          return true;
       }
       am::RampConfig cfg{board::kStepTimerHz,
                          (c.given & am::kGivenRate) ? c.rate : board::kDefaultRate,
@@ -108,11 +116,11 @@ bool execute(const am::Command& c) {
         case am::RampError::rate_above_tick: error(PSTR("speed above the timer clock")); return true;
         case am::RampError::out_of_range: error(PSTR("acceleration too low for the timer")); return true;
       }
-      const uint8_t clamped = planner::clamp(uint8_t(axis), cfg);
+      const uint8_t clamped = planner::clamp(move, cfg);
       if (clamped & planner::kClampedRate) warn_clamped('F', cfg.max_rate);
       if (clamped & planner::kClampedAccel) warn_clamped('A', cfg.accel);
       if (clamped & planner::kClampedDecel) warn_clamped('D', cfg.decel);
-      if (c.steps != 0) planner::start(uint8_t(axis), c.steps, cfg);
+      planner::start(move, cfg);
       ok();
       return true;
     }
