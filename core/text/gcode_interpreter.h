@@ -278,6 +278,10 @@ class GcodeInterpreter {
   }
 
   const GcodeState<N>& state() const { return state_; }
+  // Puts back a state taken from state(): for a caller that refuses an
+  // accepted line's action after all (the machine cannot run it), so the
+  // line changes nothing.
+  void restore(const GcodeState<N>& state) { state_ = state; }
   const GcodeAxis& axis(uint8_t i) const { return axes_[i]; }
 
   // Board axis index of an (upper-case) letter, kNoAxis if absent.

@@ -36,6 +36,9 @@ using Claims = hal::ClaimSet<kStepClock, hal::claim::uart, Axes::Claims::all>;
 constexpr uint32_t kBaud = F_CPU >= 16000000UL ? 115200 : 38400;
 constexpr uint32_t kStepTimerHz = F_CPU;
 constexpr uint32_t kMaxStepRate = F_CPU / 800;  // 20 kHz at 16 MHz, 10 kHz at 8 MHz
+// No G-code: its front end (about 8 KB) does not fit beside the engine in
+// the ATmega16's 16 KB; this board is for the lathe program.
+constexpr bool kGcode = false;
 constexpr uint32_t kDefaultRate = 1000;
 constexpr uint32_t kDefaultAccel = 4000;
 // Fastest ramp the planner keeps ahead of (tests/sim/test_invariants.cpp;

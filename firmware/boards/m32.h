@@ -33,6 +33,7 @@ using Claims = hal::ClaimSet<kStepClock, hal::claim::uart, Axes::Claims::all>;
 constexpr uint32_t kBaud = 115200;
 constexpr uint32_t kStepTimerHz = F_CPU;
 constexpr uint32_t kMaxStepRate = 40000;
+constexpr bool kGcode = true;  // the cnc program speaks G-code (docs/gcode.md)
 constexpr uint32_t kDefaultRate = 4000;    // steps/s (4 mm/s)
 constexpr uint32_t kDefaultAccel = 20000;  // steps/s^2
 // Fastest ramp the planner keeps ahead of, with any axis at 40 kHz

@@ -41,6 +41,7 @@ using Claims = hal::ClaimSet<kStepClock, hal::claim::uart, Axes::Claims::all>;
 constexpr uint32_t kBaud = 115200;
 constexpr uint32_t kStepTimerHz = F_CPU;
 constexpr uint32_t kMaxStepRate = 20000;
+constexpr bool kGcode = true;  // the cnc program speaks G-code (docs/gcode.md)
 constexpr uint32_t kDefaultRate = 400;   // steps/s
 constexpr uint32_t kDefaultAccel = 800;  // steps/s^2
 // Fastest ramp the planner keeps ahead of with the Z axis at 160 kHz, where

@@ -10,6 +10,7 @@ am::StepRun pending{0, 0};  // a run taken from the ramp but not yet queued
 uint8_t axis_mask;
 uint8_t dir_mask;
 uint8_t block;  // the coordinated block's serial
+uint32_t dwell_ms;  // of a dwell still to be queued
 int32_t positions[board::Axes::count];
 
 uint32_t magnitude(int32_t steps) { return steps < 0 ? uint32_t(-(steps + 1)) + 1u : uint32_t(steps); }
@@ -97,10 +98,19 @@ void start(const Move& move, const am::RampConfig& config) {
   pump();
 }
 
+void dwell(uint32_t ms) { dwell_ms = ms; }
+
 void pump() {
   // Fill the queue as far as it goes, then let the engine run on it: a move
   // from rest starts only with a full queue (or all of it queued).
   for (;;) {
+    if (pending.count == 0 && dwell_ms) {
+      // Whole milliseconds, one timer period each, no axis stepping.
+      const uint16_t ms = dwell_ms > 0xFFFF ? 0xFFFF : uint16_t(dwell_ms);
+      if (!engine::push(am::StepSegment::make(F_CPU / 1000, ms, 0, 0))) break;
+      dwell_ms -= ms;
+      continue;
+    }
     if (pending.count == 0) {
       if (ramp.finished()) break;
       pending = ramp.next_run();
@@ -114,7 +124,7 @@ void pump() {
   engine::start();
 }
 
-bool idle() { return pending.count == 0 && ramp.finished(); }
+bool idle() { return pending.count == 0 && ramp.finished() && dwell_ms == 0; }
 
 bool ready_for(const Move& move) {
   const uint8_t mask = mask_of(move);

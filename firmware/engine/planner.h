@@ -48,6 +48,10 @@ uint8_t clamp(const Move& move, am::RampConfig& config);
 // block has an interpolator slot free.
 bool ready_for(const Move& move);
 void start(const Move& move, const am::RampConfig& config);
+// Queues `ms` milliseconds in which nothing steps, after everything queued
+// so far (call when idle()): a dwell timed by the step timer itself. A move
+// of the same axes as the last one queues behind it without a gap.
+void dwell(uint32_t ms);
 void pump();
 bool idle();
 int32_t position(uint8_t axis);

@@ -9,6 +9,8 @@
 #include "../../axes/axis_modes.h"
 #include "../../engine/planner.h"
 #include "../../engine/step_engine.h"
+#include "gcode.h"
+#include "reply.h"
 
 namespace protocol {
 namespace {
@@ -16,20 +18,18 @@ namespace {
 using Reader = am::LineReader<80>;
 Reader reader;
 am::Command command;
-bool waiting;          // `command` is parsed and waits for its turn
+// What was accepted and waits for its turn: `command`, or the G-code line's
+// action (gcode.h).
+enum class Waiting : uint8_t { nothing, command, gcode };
+Waiting waiting;
 // Set when received bytes were lost. The gap lies somewhere after the bytes
 // still in the receive ring, so every line completed from then on is refused
 // until one ends with the ring empty: a line spliced across the gap can never
 // run as a different, valid command.
 bool tainted;
 
-void ok() { hal::uart::write_P(PSTR("ok\n")); }
-
-void error(const char* progmem_reason) {
-  hal::uart::write_P(PSTR("error: "));
-  hal::uart::write_P(progmem_reason);
-  hal::uart::write('\n');
-}
+using reply::ok;
+using reply::error;
 
 const char* parse_error_text(am::ParseError e) {
   switch (e) {
@@ -55,25 +55,6 @@ void warn_clamped(char word, uint32_t value) {
 }
 
 bool motion_done() { return planner::idle() && !engine::busy(); }
-
-// A position in steps, or for an axis counted in fractions of a full step,
-// in full steps with the decimals needed (1/64 -> 0.015625): "450", "-3.25".
-void write_position(int32_t units, uint8_t per_full_step) {
-  if (per_full_step == 1) {
-    hal::uart::write_i32(units);
-    return;
-  }
-  if (units < 0) hal::uart::write('-');
-  const uint32_t magnitude = units < 0 ? uint32_t(-(units + 1)) + 1u : uint32_t(units);
-  hal::uart::write_u32(magnitude / per_full_step);
-  uint32_t millionths = (magnitude % per_full_step) * 1000000ul / per_full_step;
-  if (millionths == 0) return;
-  hal::uart::write('.');
-  for (uint32_t digit = 100000; millionths != 0; digit /= 10) {
-    hal::uart::write(uint8_t('0' + millionths / digit));
-    millionths %= digit;
-  }
-}
 
 // The longest move: positions are kept in 1/64 full step for coil axes,
 // and 2^24 * 64 still fits the 32-bit counters.
@@ -131,7 +112,7 @@ bool execute(const am::Command& c) {
         hal::uart::write(' ');
         hal::uart::write(uint8_t(board::Axes::name_at(i)));
         hal::uart::write(':');
-        write_position(planner::position(i), board::Axes::units_per_full_step_at(i));
+        reply::position(planner::position(i), board::Axes::units_per_full_step_at(i));
       }
       hal::uart::write('\n');
       ok();
@@ -168,9 +149,13 @@ void on_line(Reader::Line line) {
   } else if (line == Reader::Line::bad_byte) {
     error(PSTR("control or non-ASCII byte in line"));
   } else {
+    if (board::kGcode && gcode::claims(reader.text())) {
+      if (gcode::accept(reader.text())) waiting = Waiting::gcode;
+      return;
+    }
     const am::ParseError e = am::parse_command(reader.text(), command);
     if (e == am::ParseError::none) {
-      waiting = true;
+      waiting = Waiting::command;
     } else if (e == am::ParseError::empty) {
       ok();  // spaces and tabs only: nothing to do, but every line is answered
     } else {
@@ -191,11 +176,12 @@ void banner() {
 
 void poll() {
   planner::pump();
-  if (waiting) {
-    if (!execute(command)) return;
-    waiting = false;
+  if (waiting != Waiting::nothing) {
+    const bool done = waiting == Waiting::command ? execute(command) : (!board::kGcode || gcode::execute());
+    if (!done) return;
+    waiting = Waiting::nothing;
   }
-  while (!waiting && hal::uart::available()) {
+  while (waiting == Waiting::nothing && hal::uart::available()) {
     if (hal::uart::overrun()) tainted = true;
     const Reader::Line line = reader.feed(char(hal::uart::read()));
     if (line != Reader::Line::none) on_line(line);

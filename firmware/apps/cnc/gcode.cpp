@@ -1,0 +1,211 @@
+#include "gcode.h"
+
+#include <avr/pgmspace.h>
+
+#define AM_TEXT(s) PSTR(s)
+#include "../../../core/text/gcode_interpreter.h"
+#include "../../../hal/avr/uart.h"
+#include "../../axes/axis_modes.h"
+#include "../../board.h"
+#include "../../engine/planner.h"
+#include "../../engine/step_engine.h"
+#include "reply.h"
+
+namespace gcode {
+namespace {
+
+constexpr uint8_t kAxes = board::Axes::count;
+
+// M350 modes an axis type takes (as AxisModes applies them).
+template <typename A>
+constexpr auto modes_of(int, int) -> decltype(A::set_mode(0), uint8_t()) {
+  return am::kModesShield;
+}
+template <typename A>
+constexpr auto modes_of(int, long) -> decltype(A::sequencer, uint8_t()) {
+  return am::kModesUnipolar;
+}
+template <typename A>
+constexpr uint8_t modes_of(long, long) {
+  return 0;
+}
+
+template <typename Set>
+struct AxisTable;
+template <typename... A>
+struct AxisTable<AxisSet<A...>> {
+  static const am::GcodeAxis value[sizeof...(A)];
+};
+// Scales in the planner's position units (1/64 full step on coil axes), so a
+// target means the same whatever the excitation mode.
+template <typename... A>
+const am::GcodeAxis AxisTable<AxisSet<A...>>::value[sizeof...(A)] = {
+    am::GcodeAxis{A::name, modes_of<A>(0, 0), A::descriptor().steps_per_m * OwnUnits<A>::per_full_step}...};
+
+// Built on first use, so a board without G-code links none of it.
+am::GcodeInterpreter<kAxes>& interpreter() {
+  static am::GcodeInterpreter<kAxes> instance(AxisTable<board::Axes>::value);
+  return instance;
+}
+am::GcodeAction<kAxes> action;  // the accepted line's, until execute() has run it
+bool pending;
+int32_t coord_before[kAxes];  // program position before the pending line
+
+uint32_t magnitude(int32_t v) { return v < 0 ? 0u - uint32_t(v) : uint32_t(v); }
+
+// The move's length along its path, 1/10000 mm: every axis but E, or E alone
+// when nothing else moves (as printers count extrusion-only moves).
+uint32_t path_length() {
+  uint64_t sum = 0, e = 0;
+  for (uint8_t i = 0; i < kAxes; ++i) {
+    const uint64_t d = magnitude(action.coord[i] - coord_before[i]);
+    if (board::Axes::name_at(i) == 'E') e = d * d;
+    else sum += d * d;
+  }
+  return uint32_t(am::isqrt64(sum ? sum : e));
+}
+
+void report_position() {
+  char buf[14];
+  for (uint8_t i = 0; i < kAxes; ++i) {
+    if (i) hal::uart::write(' ');
+    hal::uart::write(uint8_t(board::Axes::name_at(i)));
+    hal::uart::write(':');
+    am::format_fixed(buf, interpreter().state().axis[i].coord, 4);
+    hal::uart::write(buf);
+  }
+  hal::uart::write_P(PSTR(" Count"));
+  for (uint8_t i = 0; i < kAxes; ++i) {
+    hal::uart::write(' ');
+    hal::uart::write(uint8_t(board::Axes::name_at(i)));
+    hal::uart::write(':');
+    reply::position(planner::position(i), board::Axes::units_per_full_step_at(i));
+  }
+  hal::uart::write('\n');
+}
+
+bool motion_done() { return planner::idle() && !engine::busy(); }
+
+// Steps of each axis's current mode from where the planner has it to the
+// target (position units; a coil axis's step is 64 / microsteps of them),
+// rounded to the nearest step: G-code and the direct MOVE agree on where
+// the motors are.
+planner::Move move_of_action() {
+  planner::Move m{};
+  for (uint8_t i = 0; i < kAxes; ++i) {
+    const int32_t grid = board::Axes::units_for(i, 1, false);
+    const int32_t units = action.target[i] - planner::position(i);
+    m.steps[i] = (units < 0 ? units - grid / 2 : units + grid / 2) / grid;
+  }
+  return m;
+}
+
+// A G0/G1 (accept() has checked it): one coordinated block to the target.
+bool move() {
+  const planner::Move m = move_of_action();
+  uint32_t events = 0;
+  for (uint8_t i = 0; i < kAxes; ++i)
+    if (magnitude(m.steps[i]) > events) events = magnitude(m.steps[i]);
+  if (events == 0) return true;
+  if (!planner::ready_for(m)) return false;
+  // Dominant axis rate = feed * events / length (feed per minute).
+  uint32_t rate = 0xFFFFFFFFul;
+  const uint32_t length = path_length();
+  if (!action.rapid && length) {
+    const uint64_t r = (uint64_t(uint32_t(action.feed)) * events) / (uint64_t(length) * 60u);
+    rate = r ? (r > 0xFFFFFFFFull ? 0xFFFFFFFFul : uint32_t(r)) : 1;
+  }
+  am::RampConfig cfg{board::kStepTimerHz, rate, board::kDefaultAccel, board::kDefaultAccel};
+  if (cfg.max_rate > cfg.tick_hz) cfg.max_rate = cfg.tick_hz;
+  const uint8_t clamped = planner::clamp(m, cfg);
+  // A feed beyond the machine is held to it and said; a rapid is the
+  // machine's rate by definition.
+  if ((clamped & planner::kClampedRate) && !action.rapid && length) {
+    char buf[14];
+    am::format_fixed(buf, int32_t((uint64_t(cfg.max_rate) * length * 60u / events) / 10000u), 0);
+    hal::uart::write_P(PSTR("warning: F clamped to "));
+    hal::uart::write(buf);
+    hal::uart::write_P(PSTR(" mm/min\n"));
+  }
+  planner::start(m, cfg);
+  return true;
+}
+
+}  // namespace
+
+bool claims(const char* line) {
+  // G, M or N and then a number (blanks between allowed): "MOVE" and "NOP"
+  // are not G-code.
+  while (*line == ' ' || *line == '\t') ++line;
+  const char c = char(*line++ & ~0x20);
+  if (c != 'G' && c != 'M' && c != 'N') return false;
+  while (*line == ' ' || *line == '\t') ++line;
+  return (*line >= '0' && *line <= '9') || *line == '-' || *line == '+' || *line == '.';
+}
+
+bool accept(const char* line) {
+  const am::GcodeState<kAxes> before = interpreter().state();
+  for (uint8_t i = 0; i < kAxes; ++i) {
+    coord_before[i] = before.axis[i].coord;
+  }
+  const am::GcodeError e = interpreter().run(line, action);
+  if (e != am::GcodeError::none) {
+    reply::error(am::gcode_error_message(e));  // a flash string: AM_TEXT is PSTR here
+    return false;
+  }
+  // What the machine cannot run is refused now, with the state put back.
+  const char* refusal = nullptr;
+  if (action.kind == am::GcodeActionKind::arc) {
+    refusal = PSTR("G2/G3 arcs are not on the step engine yet");
+  } else if (action.kind == am::GcodeActionKind::move) {
+    switch (planner::check(move_of_action())) {
+      case planner::Refusal::position_range: refusal = PSTR("move would leave the position range"); break;
+      case planner::Refusal::timer_axis_not_alone: refusal = PSTR("the hardware-timed axis moves alone"); break;
+      default: break;
+    }
+  }
+  if (refusal) {
+    interpreter().restore(before);
+    reply::error(refusal);
+    return false;
+  }
+  pending = true;
+  return true;
+}
+
+bool execute() {
+  if (!pending) return true;
+  switch (action.kind) {
+    case am::GcodeActionKind::move:
+      if (!move()) return false;
+      break;
+    case am::GcodeActionKind::dwell:
+      if (!planner::idle()) return false;
+      planner::dwell(action.dwell_ms);
+      break;
+    case am::GcodeActionKind::report_position:
+      report_position();
+      break;
+    case am::GcodeActionKind::enable:
+      board::Axes::energise(uint8_t((1u << kAxes) - 1));
+      break;
+    case am::GcodeActionKind::release:
+    case am::GcodeActionKind::program_end:
+      if (!motion_done()) return false;
+      if (action.kind == am::GcodeActionKind::release) board::Axes::release();
+      break;
+    case am::GcodeActionKind::set_mode:
+      if (!motion_done()) return false;
+      // The interpreter checked every mode against the axis's table.
+      for (uint8_t i = 0; i < kAxes; ++i)
+        if (action.axes & (1u << i)) AxisModes<board::Axes>::set(board::Axes::name_at(i), action.mode[i]);
+      break;
+    default:  // none, set_position: nothing for the machine to do (arcs were refused)
+      break;
+  }
+  pending = false;
+  reply::ok();
+  return true;
+}
+
+}  // namespace gcode

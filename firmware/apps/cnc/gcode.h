@@ -1,0 +1,28 @@
+// The G-code side of the cnc program's line protocol (docs/gcode.md): a line
+// that starts with G, M or N and a number (after blanks) is G-code; the direct
+// controls
+// (MOVE, POS, WAIT, RELEASE, MODE: docs/protocol.md) stay beside it, with the
+// same answers.
+//
+// Contract
+//   accept(line) parses and interprets one line (core/text/gcode_*.h). On an
+//   error it prints `error: <reason>` and nothing changes; otherwise the line's
+//   action waits, and execute() carries it out once the machine can take it
+//   (false: not yet, call again), printing its report and `ok`.
+//   Moves (G0, G1) become one coordinated block each (firmware/engine), from
+//   rest to rest until the look-ahead planner exists: F is the path feed,
+//   turned into the dominant axis's rate by the move's length; G0 runs at the
+//   axes' limits. G4 queues an idle stretch of P in the step engine, so it
+//   times out after the motion before it and to the tick. G2/G3 are refused
+//   (the arc interpolator is not on the engine yet).
+#pragma once
+
+namespace gcode {
+
+// Whether `line` is G-code.
+bool claims(const char* line);
+// False when the line was refused (its error is printed).
+bool accept(const char* line);
+bool execute();
+
+}  // namespace gcode
