@@ -49,3 +49,16 @@ TEST(Examples, M16Demo) {
   EXPECT_EQ(m->serial().messages(), std::vector<std::string>{"pos Z:0 U:2048"});
   EXPECT_EQ(m->axis('Z')->step_cycles.size(), 6300u);  // 50 mm out and back
 }
+
+TEST(Examples, UnoPlotter) {
+  auto m = simtest::run("uno", job("uno-plotter.gcode"), 60);
+  EXPECT_TRUE(m->serial().errors().empty());
+  ASSERT_EQ(m->serial().messages().size(), 1u);
+  EXPECT_EQ(m->serial().messages()[0], "X:0.0000 Y:0.0000 U:0.0000 Z:2.0000 Count X:0 Y:0 U:0 Z:800");
+  // The square's four sides and the diamond's four: 50 full steps each
+  // axis per side, the diagonals 125 on both axes at once.
+  EXPECT_EQ(m->axis('X')->step_cycles.size(), 250u + 500u + 125u + 4 * 125u + 375u);
+  EXPECT_DOUBLE_EQ(m->axis('X')->steps(), 0);
+  EXPECT_DOUBLE_EQ(m->axis('Y')->steps(), 0);
+  EXPECT_DOUBLE_EQ(m->axis('Z')->steps(), 800);
+}

@@ -135,8 +135,9 @@ bool move() {
 
 bool claims(const char* line) {
   // G, M or N and then a number (blanks between allowed): "MOVE" and "NOP"
-  // are not G-code.
+  // are not G-code. A comment line (';' or '(') is: answered ok.
   while (*line == ' ' || *line == '\t') ++line;
+  if (*line == ';' || *line == '(') return true;
   const char c = char(*line++ & ~0x20);
   if (c != 'G' && c != 'M' && c != 'N') return false;
   while (*line == ' ' || *line == '\t') ++line;

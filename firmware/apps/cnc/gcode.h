@@ -1,6 +1,6 @@
 // The G-code side of the cnc program's line protocol (docs/gcode.md): a line
-// that starts with G, M or N and a number (after blanks) is G-code; the direct
-// controls
+// that starts with G, M or N and a number, or with a comment (after blanks),
+// is G-code; the direct controls
 // (MOVE, POS, WAIT, RELEASE, MODE: docs/protocol.md) stay beside it, with the
 // same answers.
 //
