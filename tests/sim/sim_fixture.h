@@ -2,7 +2,11 @@
 #pragma once
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <fstream>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -24,6 +28,21 @@ inline std::unique_ptr<sim::Machine> run(const std::string& name, const std::vec
   EXPECT_EQ(end, sim::RunEnd::done) << name << ": script did not finish";
   return m;
 }
+
+// A file name in the test temp directory, unique per process: several build
+// trees may run their tests at once.
+inline std::string temp_path(const std::string& name) {
+  return ::testing::TempDir() + "avrmotion-" + std::to_string(getpid()) + "-" + name;
+}
+
+inline std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+inline bool exists(const std::string& path) { return std::ifstream(path).good(); }
 
 inline std::vector<uint64_t> intervals(const std::vector<uint64_t>& stamps) {
   std::vector<uint64_t> out;

@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "sim_fixture.h"
+
 namespace {
 
 std::string bench_exe() {
@@ -34,18 +36,9 @@ std::string bench_exe() {
 // so the benchmark reports a broken run there, as it must.
 bool patched_simavr() { return std::string(CONFIG_SIMAVR_VERSION).find("avrmotion") != std::string::npos; }
 
-std::string temp_path(const std::string& name) {
-  return ::testing::TempDir() + "avrmotion-" + std::to_string(getpid()) + "-" + name;
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-bool exists(const std::string& path) { return std::ifstream(path).good(); }
+using simtest::exists;
+using simtest::slurp;
+using simtest::temp_path;
 
 std::vector<std::string> lines_of(const std::string& s) {
   std::vector<std::string> out;

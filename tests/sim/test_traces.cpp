@@ -23,19 +23,9 @@
 
 namespace {
 
-// Unique per process: several build trees may run their tests at once.
-std::string temp_path(const std::string& name) {
-  return ::testing::TempDir() + "avrmotion-" + std::to_string(getpid()) + "-" + name;
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-bool exists(const std::string& path) { return std::ifstream(path).good(); }
+using simtest::exists;
+using simtest::slurp;
+using simtest::temp_path;
 
 // A number or string value of the report's top level.
 std::string json_value(const std::string& json, const std::string& key) {
