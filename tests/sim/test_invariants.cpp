@@ -94,6 +94,14 @@ void check_axis(const AxisCase& c, uint64_t seed, size_t count) {
   ASSERT_EQ(moves.size(), count);
 
   sim::Machine m(simtest::image(c.image));
+  // A step/dir axis's DIR line: every step must follow its last change by
+  // the drivers' set-up time (DRV8825: 650 ns).
+  const std::vector<sim::PinEdge>* dir = nullptr;
+  for (uint8_t i = 0; i < m.board().axis_count; ++i) {
+    const am::AxisDescriptor& a = m.board().axes[i];
+    if (a.name == c.axis && a.kind == am::AxisKind::step_dir)
+      dir = &m.watch_pin(char('A' + (a.pins[1] >> 4)), uint8_t(a.pins[1] & 15));
+  }
   if (c.mode) m.serial().add_line(c.mode);
   for (const Move& mv : moves) {
     std::ostringstream line;
@@ -174,6 +182,17 @@ void check_axis(const AxisCase& c, uint64_t seed, size_t count) {
     EXPECT_LE(hi - lo, c.jitter) << "pulses wander " << lo << ".." << hi << " cycles off the schedule";
   }
   EXPECT_EQ(stamp, trace.step_cycles.size()) << "steps after the last move";
+  if (dir) {
+    const uint64_t setup = (uint64_t(f_cpu) * 650 + 999999999) / 1000000000;  // cycles, rounded up
+    size_t d = 0, changes = 0;
+    for (uint64_t step : trace.step_cycles) {
+      while (d < dir->size() && (*dir)[d].cycle <= step) ++d;
+      changes = d;
+      if (d > 0) EXPECT_GE(step - (*dir)[d - 1].cycle, setup) << "a step " << step - (*dir)[d - 1].cycle
+                                                             << " cycles after a DIR change";
+    }
+    EXPECT_GT(changes, moves.size() / 4) << "the sweep reverses often";
+  }
   std::printf("%s %c: %zu moves, largest spread %lld cycles, stack %u bytes\n", c.image, c.axis, moves.size(),
               (long long)worst, m.stack_bytes());
 }
