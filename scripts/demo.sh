@@ -9,7 +9,7 @@
 #   build/<job>-<board>.svg   the pictures (position, velocity, acceleration,
 #                             step intervals per axis)
 #   build/<job>-<board>.vcd   the trace of pins and interrupts (gtkwave FILE)
-# where <job> is the job file's name without .txt, and the "-<board>" is left
+# where <job> is the job file's name without .txt or .gcode, and the "-<board>" is left
 # out when the name already starts with the board ("m32-demo" on m32):
 # demo.txt on uno gives build/demo-uno.svg, examples/m32-demo.txt on m32
 # build/m32-demo.svg.
@@ -20,6 +20,7 @@ board=${1:-uno}
 input=${2:-examples/demo.txt}
 job=$(basename "$input")
 job=${job%.txt}
+job=${job%.gcode}
 case "$job" in
   "$board" | "$board"-*) name=$job ;;
   *) name=$job-$board ;;
