@@ -55,6 +55,7 @@ struct Scenario {
   uint32_t steps;
   char pulse_port;  // a STEP pin whose pulse widths to measure, or 0
   uint8_t pulse_bit;
+  const char* also = "";  // axes moving the same steps with `axis` (a coordinated diagonal)
 };
 
 struct Figures {
@@ -115,6 +116,13 @@ const std::vector<Table>& engine_tables() {
        {{"m32", 'X', 10000, 200000, 20000, 0, 0},
         {"m32", 'X', 40000, 200000, 40000, 0, 0},
         {"m32", 'X', 80000, 200000, 40000, 0, 0}}},
+      {"m32 axes X Y Z (and E), one coordinated diagonal block, software STEP pulses, 200000 steps/s^2\n"
+       "(figures per event of the dominant axis X; every axis steps at every event)",
+       "axes X Y Z (E), one coordinated diagonal block, software STEP pulses, 200000 steps/s^2",
+       "m32 XYZ(E), coordinated",
+       {{"m32", 'X', 10000, 200000, 20000, 0, 0, "YZ"},
+        {"m32", 'X', 40000, 200000, 40000, 0, 0, "YZ"},
+        {"m32", 'X', 40000, 200000, 40000, 0, 0, "YZE"}}},
       {"Uno axis X, Motor Shield latch (two-phase), 20000 steps/s^2",
        "axis X, Adafruit Motor Shield v1 latch (74HC595, two-phase), 20000 steps/s^2", "uno X, shield latch",
        {{"uno", 'X', 2000, 20000, 4000, 0, 0}, {"uno", 'X', 20000, 20000, 20000, 0, 0}}},
@@ -155,8 +163,9 @@ std::string image_path(const std::string& dir, const std::string& name) {
 }
 
 std::string move_line(const Scenario& s) {
-  return std::string("MOVE ") + s.axis + std::to_string(s.steps) + " F" + std::to_string(s.rate) + " A" +
-         std::to_string(s.accel);
+  std::string line = std::string("MOVE ") + s.axis + std::to_string(s.steps);
+  for (const char* a = s.also; *a; ++a) line += std::string(" ") + *a + std::to_string(s.steps);
+  return line + " F" + std::to_string(s.rate) + " A" + std::to_string(s.accel);
 }
 
 double interrupt_cycles(const std::map<int, sim::IsrStats>& a, const std::map<int, sim::IsrStats>& b) {
@@ -198,6 +207,8 @@ Figures measure(const std::string& dir, const Scenario& s) {
   const double pos = m.axis(s.axis)->steps();
   f.steps = size_t(pos >= 0 ? pos : -pos);
   f.ok = f.steps == s.steps && st.size() == s.steps;
+  for (const char* a = s.also; *a; ++a)
+    f.ok = f.ok && m.axis(*a) && m.axis(*a)->step_cycles.size() == s.steps && m.axis(*a)->steps() == double(s.steps);
   if (!f.ok || st.size() < 2) return f;
 
   // Every step of the whole move against the schedule, ramps included.
