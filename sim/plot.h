@@ -4,6 +4,10 @@
 // One row of four panels per axis, each panel with its own scale:
 //   position (mm) | velocity (mm/s) | acceleration (mm/s^2)  against time (s)
 //   | a histogram of the axis's step intervals (us, log bins, log counts).
+// When the board has X and Y and both stepped, a last row: the XY toolpath
+// (mm, one scale and one 1-2-5 tick step on both axes), travel, feed and
+// extrusion drawn apart as sim/toolpath.h classifies them, with a legend and
+// the rule that was applied.
 // Velocity and acceleration are derived from the decoded step events as
 // sim/motion.h describes (a Gaussian window whose width is in the panel
 // titles). Ticks are 1-2-5 values (sim/ticks.h). Each axis keeps one colour
@@ -13,7 +17,12 @@
 // data-axis="X" data-kind="position|velocity|acceleration|intervals">, every
 // data series carries class="series" and the same data-axis / data-kind,
 // tick labels are <text class="tick" data-dir="x|y"> and axis titles
-// <text class="axis-title">.
+// <text class="axis-title">. The toolpath is <g class="panel" data-axis="XY"
+// data-kind="toolpath">, its path polylines class="series" data-axis="XY"
+// data-kind="toolpath" data-move="travel|feed|extrusion" (one per run of a
+// kind, in order, each starting where the last ended), the start and end
+// <circle class="marker" data-kind="start|end">, and the legend entries
+// <g class="move-legend" data-move="...">.
 #pragma once
 #include <string>
 
