@@ -215,13 +215,8 @@ Figures measure(const std::string& dir, const Scenario& s) {
   const std::vector<uint32_t> plan =
       sim::planned_schedule(s.steps, am::RampConfig{m.f_cpu(), f.clamped_to ? f.clamped_to : s.rate, s.accel, s.accel});
   const uint32_t fastest = *std::min_element(plan.begin() + 1, plan.end());
-  uint64_t due = st[0], cruise_cycles = 0, cruise_steps = 0;
-  int64_t lo = 0, hi = 0;
+  uint64_t cruise_cycles = 0, cruise_steps = 0;
   for (size_t i = 1; i < st.size(); ++i) {
-    due += plan[i];
-    const int64_t late = int64_t(st[i]) - int64_t(due);
-    lo = std::min(lo, late);
-    hi = std::max(hi, late);
     const uint64_t interval = st[i] - st[i - 1];
     f.doubled += interval * 2 > uint64_t(plan[i]) * 3;
     if (plan[i] == fastest) {
@@ -229,7 +224,7 @@ Figures measure(const std::string& dir, const Scenario& s) {
       ++cruise_steps;
     }
   }
-  f.spread = hi - lo;
+  f.spread = sim::lateness(st, 0, st.size(), plan).spread();
   f.cruise_hz = cruise_steps ? double(m.f_cpu()) * cruise_steps / double(cruise_cycles) : 0;
   const double irq = interrupt_cycles(before, after);
   f.isr_cycles_per_step = irq / double(s.steps - 1);

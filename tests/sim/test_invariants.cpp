@@ -169,17 +169,10 @@ void check_axis(const AxisCase& c, uint64_t seed, size_t count) {
     // 2 and 7. Every interval on the schedule; none shorter than the rate.
     const std::vector<uint32_t> expected = schedule(uint32_t(std::abs(mv.steps)), cfg);
     const uint32_t shortest = f_cpu / cfg.max_rate + (f_cpu % cfg.max_rate != 0);
-    uint64_t due = trace.step_cycles[first];
-    int64_t lo = 0, hi = 0;
-    for (size_t i = 1; i < pulses; ++i) {
-      EXPECT_GE(expected[i], shortest) << "step " << i;
-      due += expected[i];
-      const int64_t late = int64_t(trace.step_cycles[first + i]) - int64_t(due);
-      lo = std::min(lo, late);
-      hi = std::max(hi, late);
-    }
-    worst = std::max(worst, hi - lo);
-    EXPECT_LE(hi - lo, c.jitter) << "pulses wander " << lo << ".." << hi << " cycles off the schedule";
+    for (size_t i = 1; i < pulses; ++i) EXPECT_GE(expected[i], shortest) << "step " << i;
+    const sim::Lateness late = sim::lateness(trace.step_cycles, first, pulses, expected);
+    worst = std::max(worst, late.spread());
+    EXPECT_LE(late.spread(), c.jitter) << "pulses wander " << late.lo << ".." << late.hi << " cycles off the schedule";
   }
   EXPECT_EQ(stamp, trace.step_cycles.size()) << "steps after the last move";
   if (dir) {
@@ -389,16 +382,10 @@ void check_coordinated(const CoordinatedCase& c, uint64_t seed, size_t count) {
     // The dominant axis on the schedule; no event faster than F allows.
     const std::vector<uint32_t> expected = schedule(events, cfg);
     const std::vector<uint64_t>& dom = pulses[dominant];
-    uint64_t due = dom[0];
-    int64_t lo = 0, hi = 0;
-    for (size_t i = 1; i < dom.size(); ++i) {
-      EXPECT_GE(expected[i], f_cpu / cfg.max_rate) << "event " << i;
-      due += expected[i];
-      lo = std::min(lo, int64_t(dom[i]) - int64_t(due));
-      hi = std::max(hi, int64_t(dom[i]) - int64_t(due));
-    }
-    worst = std::max(worst, hi - lo);
-    EXPECT_LE(hi - lo, c.jitter) << "dominant " << c.axes[dominant] << " wanders " << lo << ".." << hi;
+    for (size_t i = 1; i < dom.size(); ++i) EXPECT_GE(expected[i], f_cpu / cfg.max_rate) << "event " << i;
+    const sim::Lateness late = sim::lateness(dom, 0, dom.size(), expected);
+    worst = std::max(worst, late.spread());
+    EXPECT_LE(late.spread(), c.jitter) << "dominant " << c.axes[dominant] << " wanders " << late.lo << ".." << late.hi;
 
     // Every other axis on the dominant's Bresenham events.
     for (size_t a = 0; a < n_axes; ++a) {

@@ -23,20 +23,13 @@ void expect_schedule(const std::string& image, char axis, uint32_t steps, const 
   const std::vector<uint64_t>& stamps = m->axis(axis)->step_cycles;
   ASSERT_EQ(stamps.size(), steps);
   // Pulse k is due at pulse 0 plus the ramp's delays 1..k.
-  uint64_t due = stamps[0];
-  int64_t lo = 0, hi = 0;
-  for (size_t k = 1; k < stamps.size(); ++k) {
-    due += expected[k];
-    const int64_t late = int64_t(stamps[k]) - int64_t(due);
-    lo = std::min(lo, late);
-    hi = std::max(hi, late);
-  }
+  const sim::Lateness late = sim::lateness(stamps, 0, stamps.size(), expected);
   // The timer fixes every pulse's slot; only interrupt latency (the
   // instruction the main loop is in, a UART interrupt) and data-dependent
   // work before the output moves a pulse within it. The window is the
   // engine's documented jitter bound (docs/step-engine.md); no drift means
   // no lost or extra tick anywhere in the move.
-  EXPECT_LE(hi - lo, jitter_bound) << image << ": pulses wander " << lo << ".." << hi << " cycles";
+  EXPECT_LE(late.spread(), jitter_bound) << image << ": pulses wander " << late.lo << ".." << late.hi << " cycles";
 }
 
 }  // namespace
