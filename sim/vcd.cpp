@@ -251,12 +251,32 @@ void VcdRecorder::on_irq(avr_irq_t*, uint32_t value, void* param) {
   s->rec->change(*s, value);
 }
 
+// Changes come in cycle order, except timed events (a compare match, an OC
+// pin) that fall inside an interrupt's response: simavr charges those 4 (or 5)
+// cycles at once and raises the vector's running IRQ at their end, then runs
+// the events with their own, earlier cycles (patch J). So the changes of the
+// last kReorder cycles are held back and written sorted by cycle.
+constexpr uint64_t kReorder = 16;
+
 void VcdRecorder::change(Signal& s, uint32_t value) {
   const uint32_t v = s.mask ? (value & s.mask) : ((value & 0xff) != 0);
   const uint64_t now = m_.cycles();
-  if (now != cycle_) {
+  held_.push_back({now, &s, v});
+  if (now > kReorder) release(now - kReorder);
+}
+
+void VcdRecorder::release(uint64_t through) {
+  std::stable_sort(held_.begin(), held_.end(), [](const Held& a, const Held& b) { return a.cycle < b.cycle; });
+  size_t n = 0;
+  for (; n < held_.size() && held_[n].cycle <= through; ++n) stage(*held_[n].signal, held_[n].value, held_[n].cycle);
+  held_.erase(held_.begin(), held_.begin() + long(n));
+}
+
+void VcdRecorder::stage(Signal& s, uint32_t v, uint64_t cycle) {
+  // Never before what is written already (an event later than kReorder).
+  if (cycle > cycle_) {
     flush_cycle();
-    cycle_ = now;
+    cycle_ = cycle;
   }
   if (!s.pending) {
     if (v == s.committed) return;
@@ -298,6 +318,7 @@ void VcdRecorder::finish() {
   finished_ = true;
   for (auto& s : signals_) avr_irq_unregister_notify(s->irq, &VcdRecorder::on_irq, s.get());
   if (!body_) return;
+  release(UINT64_MAX);
   flush_cycle();
 
   const am::BoardDescriptor& b = m_.board();

@@ -71,6 +71,8 @@ class VcdRecorder {
   static void on_irq(avr_irq_t* irq, uint32_t value, void* param);
   void add(const std::string& scope, const std::string& name, int bits, avr_irq_t* irq, bool always, uint32_t mask);
   void change(Signal& s, uint32_t value);
+  void release(uint64_t through);  // stages the held changes up to that cycle
+  void stage(Signal& s, uint32_t value, uint64_t cycle);
   void flush_cycle();
   void abandon();  // unhooks and removes the file (a bad signal list)
 
@@ -78,6 +80,12 @@ class VcdRecorder {
   std::string path_;
   std::FILE* body_ = nullptr;  // value changes, in order (a temporary file)
   std::vector<std::unique_ptr<Signal>> signals_;
+  struct Held {
+    uint64_t cycle;
+    Signal* signal;
+    uint32_t value;
+  };
+  std::vector<Held> held_;        // changes of the last few cycles, not staged yet (vcd.cpp: kReorder)
   std::vector<Signal*> pending_;  // changed in the current cycle
   uint64_t cycle_ = 0;            // of the pending changes
   uint64_t start_stamp_ = 0;      // when the recording began, ps

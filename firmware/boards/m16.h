@@ -27,11 +27,17 @@ using Axes = AxisSet<StepDirAxis<'Z', Pin<'C', 0>, Pin<'C', 1>, Pin<'C', 7>, tru
 // nearest divisor for 115200 gives 111111 (-3.5 %, outside the datasheet's
 // recommended +-2 %), so the 8 MHz image talks at 38400 (38462, +0.2 %).
 // Hardware claims (hal/avr/claims.h, checked when the image compiles): Timer1
-// is the step clock, the UART talks to the host. The seed's DC-servo
-// leadscrew drives its L298 from OC1A (PD5), which needs Timer1 for PWM: a
-// servo variant of this board cannot also claim Timer1 as a step clock.
+// is the step clock, the UART talks to the host, Timer0 is the time base
+// (firmware/engine/clock.h; keypad debounce, the lathe program's timeouts):
+// its own, in normal mode with prescaler 64, one tick per 4 us at 16 MHz
+// (8 us at 8 MHz), an overflow interrupt every 16384 cycles (29 of them,
+// 0.2 % of the CPU); OC0 (PB3, a keypad row) stays a port pin. Timer2 is
+// free. The seed's DC-servo leadscrew drives its L298 from OC1A (PD5), which
+// needs Timer1 for PWM: a servo variant of this board cannot also claim
+// Timer1 as a step clock.
 constexpr uint32_t kStepClock = hal::claim::timer1;
-using Claims = hal::ClaimSet<kStepClock, hal::claim::uart, Axes::Claims::all>;
+constexpr uint32_t kClock = hal::claim::timer0_ovf | hal::claim::timer0 | hal::claim::timer0_div64;
+using Claims = hal::ClaimSet<kStepClock, kClock, hal::claim::uart, Axes::Claims::all>;
 
 constexpr uint32_t kBaud = F_CPU >= 16000000UL ? 115200 : 38400;
 constexpr uint32_t kStepTimerHz = F_CPU;

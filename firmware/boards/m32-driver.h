@@ -39,7 +39,10 @@ using Axes = AxisSet<UnipolarAxis<'M', CoilA, CoilB, CoilC, CoilD, 1000000>>;
 // Unused by this image (no UART: PD0/PD1 are DIR/ENABLE); descriptor.cpp
 // records it and the simulator's serial model needs a non-zero rate.
 // Hardware claims (hal/avr/claims.h, checked when the image compiles): STEP
-// on INT0, the chopper's current sense on the ADC, the UART. No step clock.
+// on INT0, the chopper's current sense on the ADC, the UART. No step clock,
+// and no time base: the image follows its inputs and the ADC's conversion
+// chain paces the chopper, so nothing in it waits for a time (its app does
+// not link firmware/engine/clock.cpp). Timers 0, 1 and 2 are free.
 using Claims = hal::ClaimSet<hal::claim::int0, hal::claim::adc, hal::claim::uart, Axes::Claims::all>;
 
 constexpr uint32_t kBaud = 115200;

@@ -25,10 +25,14 @@ using Axes = AxisSet<StepDirAxis<'X', Pin<'C', 0>, Pin<'C', 1>, Pin<'B', 0>, tru
                      UnipolarAxis<'U', Pin<'B', 4>, Pin<'B', 5>, Pin<'B', 6>, Pin<'B', 7>, 4096>>;
 
 // Hardware claims (hal/avr/claims.h, checked when the image compiles): Timer1
-// is the step clock, the UART talks to the host. Timer0 and Timer2 (OC2 =
-// PD7, the heater's MOSFET) are free.
+// is the step clock, the UART talks to the host, Timer0 is the time base
+// (firmware/engine/clock.h): its own, in normal mode with prescaler 64, one
+// tick per 4 us, an overflow interrupt every 16384 cycles (29 of them, 0.2 %
+// of the CPU); OC0 (PB3, axis E's enable) stays a port pin. Timer2 (OC2 =
+// PD7, the heater's MOSFET) is left free for the heater's PWM.
 constexpr uint32_t kStepClock = hal::claim::timer1;
-using Claims = hal::ClaimSet<kStepClock, hal::claim::uart, Axes::Claims::all>;
+constexpr uint32_t kClock = hal::claim::timer0_ovf | hal::claim::timer0 | hal::claim::timer0_div64;
+using Claims = hal::ClaimSet<kStepClock, kClock, hal::claim::uart, Axes::Claims::all>;
 
 constexpr uint32_t kBaud = 115200;
 constexpr uint32_t kStepTimerHz = F_CPU;

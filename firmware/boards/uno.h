@@ -24,19 +24,39 @@ namespace board {
 
 using hal::Pin;
 using Latch = hal::Latch595<Pin<'B', 4>, Pin<'D', 4>, Pin<'B', 0>, Pin<'D', 7>>;
-// Enables by 62.5 kHz PWM: stepper 1 M1 = D11 (OC2A), M2 = D3 (OC2B);
-// stepper 2 M3 = D6 (OC0A), M4 = D5 (OC0B). Timer0 is free: no millis() here.
+// Enables by 8-bit fast PWM: stepper 1 M1 = D11 (OC2A), M2 = D3 (OC2B) on
+// Timer2 with no prescaler, 62.5 kHz; stepper 2 M3 = D6 (OC0A), M4 = D5 (OC0B)
+// on Timer0 with prescaler 8, 7.8 kHz, because Timer0's overflow is also the
+// board's time base (kClock below).
+constexpr uint16_t kTimer0Prescaler = 8;
 using Axes = AxisSet<ShieldStepper<'X', 1, Latch, hal::Pwm8<2, 'A'>, hal::Pwm8<2, 'B'>, 25000>,
-                     ShieldStepper<'Y', 2, Latch, hal::Pwm8<0, 'A'>, hal::Pwm8<0, 'B'>, 25000>,
+                     ShieldStepper<'Y', 2, Latch, hal::Pwm8<0, 'A', kTimer0Prescaler>,
+                                   hal::Pwm8<0, 'B', kTimer0Prescaler>, 25000>,
                      UnipolarAxis<'U', Pin<'C', 0>, Pin<'C', 1>, Pin<'C', 2>, Pin<'C', 3>, 4096>,
                      TimerStepAxis<'Z', Pin<'B', 2>, Pin<'C', 4>, true, 400000>>;
 
 // Hardware claims (hal/avr/claims.h, checked when the image compiles): Timer1
 // is the step clock and its OC1A the Z axis's STEP; Timers 0 and 2 drive the
 // shield's enable PWM (the axes claim them); the UART talks to the host.
-// Every timer is taken: this board has no free-running time base yet.
+// Every timer is taken, so the time base (firmware/engine/clock.h) shares
+// Timer0 with stepper 2's PWM: it counts the PWM's period (mode 3, 0..0xFF)
+// and its overflow extends the count, one tick per 8 cycles (0.5 us), an
+// overflow interrupt every 2048 cycles (29 of them, 1.4 % of the CPU). The
+// claim says "Timer0's overflow is the clock and its PWM runs at F_CPU / 8 /
+// 256": a second time base, a PWM channel at another rate or a part that
+// reprograms Timer0 do not compile. Prescaler 8 rather than 64: stepper 2's
+// enables carry the microstep sine currents, and at 7.8 kHz (a 128 us
+// period, well under a winding's L/R of about 1 ms) the current still
+// averages the duty with little ripple, where 977 Hz (prescaler 64, the
+// Arduino default AFMotor lived with) ripples by a large part of it and hums
+// at the ear's most sensitive pitch; 7.8 kHz is audible too, 62.5 kHz was
+// not. The price: 8 times as many overflow interrupts as prescaler 64 (1.4 %
+// of the CPU instead of 0.2 %) and a clock that wraps after 35.8 min instead
+// of 4.8 h. Timer2 keeps stepper 1 at 62.5 kHz.
 constexpr uint32_t kStepClock = hal::claim::timer1;
-using Claims = hal::ClaimSet<kStepClock, hal::claim::uart, Axes::Claims::all>;
+constexpr uint32_t kClock =
+    hal::claim::timer0_ovf | hal::claim::timer0_pwm8 | hal::claim::rate(0, kTimer0Prescaler);
+using Claims = hal::ClaimSet<kStepClock, kClock, hal::claim::uart, Axes::Claims::all>;
 
 constexpr uint32_t kBaud = 115200;
 constexpr uint32_t kStepTimerHz = F_CPU;

@@ -6,7 +6,9 @@
 // the rows of each sequence (section 2), AFMotor's 16-microstep curve, and
 // for the microstep currents 255 |cos|, 255 |sin| computed here with std::sin.
 // PWM: 16 MHz / 256 = 62.5 kHz on Timer2 (stepper 1: OC2A = M1 = winding A,
-// OC2B = M2 = winding B) and Timer0 (stepper 2: OC0A = M3 = A, OC0B = M4 = B).
+// OC2B = M2 = winding B), 16 MHz / 8 / 256 = 7.8 kHz on Timer0 (stepper 2:
+// OC0A = M3 = A, OC0B = M4 = B), whose overflow is also the board's time base
+// (firmware/boards/uno.h, tests/sim/test_clock.cpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -234,29 +236,32 @@ TEST(ShieldModes, Microstep64) {
   check_micro_mode(kS2, 64);
 }
 
-TEST(ShieldModes, PwmRunsAt62500HzOnBothSteppers) {
+TEST(ShieldModes, PwmRunsAt62500HzOnStepper1And7812HzOnStepper2) {
   // Hold microstep 2 of 16 (angle 8: A 255 cos 11.25 deg = 250.1, B 49.7).
   Session r({"MODE X16", "MOVE X2", "MODE Y16", "MOVE Y2", "WAIT"});
   // Timer configuration (ATmega328P datasheet ch. 17/19): TCCRnA = COMnA 10,
-  // COMnB 10, WGMn1:0 11; TCCRnB = WGMn2 0, CS 001 -> fast PWM, TOP 0xFF,
-  // clock F_CPU: 16 MHz / 256 = 62.5 kHz.
+  // COMnB 10, WGMn1:0 11; TCCRnB = WGMn2 0 -> fast PWM, TOP 0xFF; CS 001
+  // (Timer2): clock F_CPU, 16 MHz / 256 = 62.5 kHz; CS 010 (Timer0): F_CPU / 8,
+  // 7812.5 Hz.
   const uint8_t* data = r.m->avr()->data;
-  const struct { uint16_t tccra, tccrb; } timers[2] = {{0xB0, 0xB1}, {0x44, 0x45}};
+  const struct { uint16_t tccra, tccrb; uint8_t cs; } timers[2] = {{0xB0, 0xB1, 0x01}, {0x44, 0x45, 0x02}};
   for (const auto& t : timers) {
     EXPECT_EQ(data[t.tccra], 0xA3) << std::hex << t.tccra;
-    EXPECT_EQ(data[t.tccrb] & 0x0F, 0x01) << std::hex << t.tccrb;
+    EXPECT_EQ(data[t.tccrb] & 0x0F, t.cs) << std::hex << t.tccrb;
   }
-  // The OC pins themselves, over 100 more PWM periods.
+  // The OC pins themselves, over 100 more periods of stepper 2's PWM.
   const Stepper* steppers[2] = {&kS1, &kS2};
   std::vector<const std::vector<sim::PinEdge>*> logs;
   for (const Stepper* s : steppers) {
     logs.push_back(&r.m->watch_pin(s->pin_port_a, s->pin_bit_a));
     logs.push_back(&r.m->watch_pin(s->pin_port_b, s->pin_bit_b));
   }
-  const uint64_t until = r.m->cycles() + 256 * 100;
-  r.m->run([&] { return r.m->cycles() >= until; }, 256 * 200);
+  const uint64_t until = r.m->cycles() + 2048 * 100;
+  r.m->run([&] { return r.m->cycles() >= until; }, 2048 * 200);
   const int duty[2] = {250, 50};
   for (size_t k = 0; k < logs.size(); ++k) {
+    const double ticks = k < 2 ? 1.0 : 8.0;  // cycles per timer tick
+    const double hz = 16e6 / ticks / 256;
     std::vector<uint64_t> rises;
     uint64_t high_total = 0, last_rise = 0;
     int highs = 0;
@@ -272,12 +277,12 @@ TEST(ShieldModes, PwmRunsAt62500HzOnBothSteppers) {
     ASSERT_GE(rises.size(), 90u) << "pin " << k;
     // simavr delivers timer events at instruction boundaries: single periods
     // jitter by a few cycles, the mean is exact.
-    for (uint64_t d : simtest::intervals(rises)) EXPECT_NEAR(double(d), 256.0, 4.0) << "pin " << k;
+    for (uint64_t d : simtest::intervals(rises)) EXPECT_NEAR(double(d), 256.0 * ticks, 4.0) << "pin " << k;
     const double period = double(rises.back() - rises.front()) / double(rises.size() - 1);
-    EXPECT_NEAR(16e6 / period, 62500.0, 62500.0 * 4 / 256 / double(rises.size() - 1)) << "pin " << k;
+    EXPECT_NEAR(16e6 / period, hz, hz * 4 / (256 * ticks) / double(rises.size() - 1)) << "pin " << k;
     // Non-inverting fast PWM: high for OCR + 1 of every 256 ticks.
     ASSERT_GT(highs, 0);
-    EXPECT_NEAR(double(high_total) / highs, duty[k % 2] + 1, 1.0) << "pin " << k;
+    EXPECT_NEAR(double(high_total) / highs, (duty[k % 2] + 1) * ticks, ticks) << "pin " << k;
   }
 }
 

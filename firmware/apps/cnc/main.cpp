@@ -6,12 +6,14 @@
 #include "../../../hal/avr/uart.h"
 #include "../../board.h"
 #include "protocol.h"
+#include "../../engine/clock.h"
 #include "../../engine/step_engine.h"
 
 int main() {
   hal_disable_jtag();
   board::init();
   engine::init();
+  clock::init();
   hal::uart::init(F_CPU, board::kBaud);
   sei();
   protocol::banner();

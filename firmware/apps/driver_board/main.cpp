@@ -15,6 +15,8 @@
 //   - PORTB low nibble = state AND NOT cut, written in one OUT with interrupts
 //     off (inside an ISR, or cli in the main loop); PB4..PB7 are read back
 //     and kept.
+//   - No time base (firmware/engine/clock.h): nothing here waits for a time,
+//     so the image leaves Timer0 off and links no clock.
 
 // Speed over size for this file: at -Os the helpers below stay calls and
 // both ISRs save every call-clobbered register; -O2 inlines them.
