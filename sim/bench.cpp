@@ -101,16 +101,16 @@ struct Table {
 
 const std::vector<Table>& engine_tables() {
   static const std::vector<Table> tables = {
-      {"Uno axis Z, hardware-timed STEP (OC1A), ramp planned on the chip, 400000 steps/s^2\n"
+      {"Uno axis Z, hardware-timed STEP (OC1A), ramp planned on the chip, 300000 steps/s^2\n"
        "(whole move, ramps included: irq cyc/st counts every interrupt from the first step to the\n"
        " last, response and RETI included, per step; spread is the max - min lateness of the steps\n"
        " against the planned schedule; doubled counts intervals > 1.5 x their scheduled interval)",
-       "axis Z, hardware-timed STEP on OC1A (D9), 400000 steps/s^2", "uno Z, timer-pulsed STEP",
-       {{"uno", 'Z', 50000, 400000, 60000, 'B', 1},
-        {"uno", 'Z', 100000, 400000, 80000, 'B', 1},
-        {"uno", 'Z', 150000, 400000, 100000, 'B', 1},
-        {"uno", 'Z', 160000, 400000, 100000, 'B', 1},
-        {"uno", 'Z', 250000, 400000, 100000, 'B', 1}}},
+       "axis Z, hardware-timed STEP on OC1A (D9), 300000 steps/s^2", "uno Z, timer-pulsed STEP",
+       {{"uno", 'Z', 50000, 300000, 60000, 'B', 1},
+        {"uno", 'Z', 100000, 300000, 80000, 'B', 1},
+        {"uno", 'Z', 150000, 300000, 100000, 'B', 1},
+        {"uno", 'Z', 160000, 300000, 100000, 'B', 1},
+        {"uno", 'Z', 250000, 300000, 100000, 'B', 1}}},
       {"m32 axis X, software STEP pulse (GPIO in the interrupt), 200000 steps/s^2",
        "axis X, software STEP pulse (GPIO in the interrupt), 200000 steps/s^2", "m32 X, software STEP pulse",
        {{"m32", 'X', 10000, 200000, 20000, 0, 0},
@@ -213,7 +213,7 @@ Figures measure(const std::string& dir, const Scenario& s) {
 
   // Every step of the whole move against the schedule, ramps included.
   const std::vector<uint32_t> plan =
-      sim::planned_schedule(s.steps, am::RampConfig{m.f_cpu(), f.clamped_to ? f.clamped_to : s.rate, s.accel, s.accel});
+      sim::planned_schedule(s.steps, sim::Ramp{m.f_cpu(), f.clamped_to ? f.clamped_to : s.rate, s.accel});
   const uint32_t fastest = *std::min_element(plan.begin() + 1, plan.end());
   uint64_t cruise_cycles = 0, cruise_steps = 0;
   for (size_t i = 1; i < st.size(); ++i) {

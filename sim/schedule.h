@@ -1,21 +1,29 @@
-// The schedule the firmware's planner computes for a one-axis move: the
-// core's SpeedRamp, batched above 4 kHz exactly as firmware/apps/cnc/
-// planner.cpp does, one interval (timer ticks before the step) per step.
-// Tests and the benchmark compare the step edges they see with it.
+// The schedule the firmware computes for a direct move from rest to rest:
+// the core's exact trapezoid (core/motion/trapezoid.h) run on the host,
+// where its float arithmetic gives the chip's results bit for bit, one
+// interval (timer ticks before the step) per step. Tests and the benchmark
+// compare the step edges they see with it.
 #pragma once
 #include <cstdint>
 #include <vector>
 
-#include "../core/motion/speed_ramp.h"
+#include "../core/motion/trapezoid.h"
 
 namespace sim {
 
-inline std::vector<uint32_t> planned_schedule(uint32_t steps, const am::RampConfig& cfg) {
-  am::SpeedRamp ramp;
-  if (ramp.plan(steps, cfg) != am::RampError::none) return {};
-  ramp.batch_below(cfg.tick_hz / 4000);
+// A direct move's profile as the firmware runs it (after its clamps): the
+// dominant axis's rate and acceleration, from rest to rest.
+struct Ramp {
+  uint32_t tick_hz;
+  uint32_t rate;   // steps/s
+  uint32_t accel;  // steps/s^2, up and down
+};
+
+inline std::vector<uint32_t> planned_schedule(uint32_t steps, const Ramp& r) {
+  am::TrapezoidRuns runs;
+  if (!runs.start(am::TrapezoidBlock{steps, 0.0f, float(r.rate), 0.0f, float(r.accel)}, r.tick_hz)) return {};
   std::vector<uint32_t> out;
-  for (am::StepRun r = ramp.next_run(); r.count; r = ramp.next_run()) out.insert(out.end(), r.count, r.interval);
+  for (am::StepRun s = runs.next_run(); s.count; s = runs.next_run()) out.insert(out.end(), s.count, s.interval);
   return out;
 }
 

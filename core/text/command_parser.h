@@ -8,9 +8,11 @@
 //   terminating NUL and never writes outside `out`. Keywords and axis letters
 //   are case-insensitive; words are separated by spaces or tabs.
 //
-//   MOVE <axis><steps>... [F<rate>] [A<accel>] [D<decel>]
-//        relative move of one or more axes together (each letter once; F,
-//        A and D are those of the axis with the most steps)
+//   MOVE <axis><steps>... [F<rate>] [A<accel>]
+//        relative move of one or more axes together (each letter once; F
+//        and A are those of the axis with the most steps; A is both the
+//        acceleration and the deceleration: one exact profile, with no
+//        separate D any more)
 //   POS                                                   report positions
 //   RELEASE                                               coils / drivers off
 //   WAIT                                                  answer once idle
@@ -49,11 +51,10 @@ struct Command {
   int32_t axis_steps[kMoveAxes];  //   and their steps
   uint32_t rate;    // steps/s
   uint32_t accel;   // steps/s^2
-  uint32_t decel;   // steps/s^2
-  uint8_t given;    // which of rate/accel/decel the line set (kGiven* bits)
+  uint8_t given;    // which of rate/accel the line set (kGiven* bits)
 };
 
-constexpr uint8_t kGivenRate = 2, kGivenAccel = 4, kGivenDecel = 8;
+constexpr uint8_t kGivenRate = 2, kGivenAccel = 4;
 
 namespace detail {
 
@@ -98,7 +99,7 @@ inline ParseError parse_command(const char* p, Command& out) {
   using namespace detail;
   while (blank(*p)) ++p;
   if (!*p) return ParseError::empty;
-  out = Command{CommandKind::move, 0, 0, 0, {}, {}, 0, 0, 0, 0};
+  out = Command{CommandKind::move, 0, 0, 0, {}, {}, 0, 0, 0};
   if (keyword(p, "POS")) out.kind = CommandKind::position;
   else if (keyword(p, "RELEASE")) out.kind = CommandKind::release;
   else if (keyword(p, "WAIT")) out.kind = CommandKind::wait;
@@ -129,11 +130,11 @@ inline ParseError parse_command(const char* p, Command& out) {
       out.axis_steps[out.axis_count++] = value;
     } else if (out.kind == CommandKind::mode) {
       return ParseError::unexpected_word;  // MODE takes its axis word only
-    } else if (letter == 'F' || letter == 'A' || letter == 'D') {
-      bit = letter == 'F' ? kGivenRate : letter == 'A' ? kGivenAccel : kGivenDecel;
+    } else if (letter == 'F' || letter == 'A') {
+      bit = letter == 'F' ? kGivenRate : kGivenAccel;
       if (seen & bit) return ParseError::duplicate_word;
       if (value < 0) return ParseError::out_of_range;
-      (letter == 'F' ? out.rate : letter == 'A' ? out.accel : out.decel) = uint32_t(value);
+      (letter == 'F' ? out.rate : out.accel) = uint32_t(value);
     } else {
       return ParseError::unexpected_word;
     }

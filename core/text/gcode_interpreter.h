@@ -6,6 +6,9 @@
 //   GcodeInterpreter<N>(axes) serves a board with the N axes `axes[]` (the
 //   array must outlive the interpreter): their letters, M350 modes and scale
 //   in steps per metre. A word for any other axis letter is no_such_axis.
+//   GcodeInterpreter<N, false> has no arcs: a G2/G3 motion is arcs_not_here
+//   and none of the arc arithmetic is linked (a machine that cannot run arcs
+//   keeps its flash).
 //
 //   execute(block, action) applies one block. On GcodeError::none the state
 //   has moved on (modes, feed, G92 offsets, position) and `action` says what
@@ -261,7 +264,7 @@ __attribute__((noinline)) inline GcodeError offset_arc_check(const int32_t (&d)[
 
 }  // namespace gcode_detail
 
-template <uint8_t N>
+template <uint8_t N, bool Arcs = true>
 class GcodeInterpreter {
   static_assert(N >= 1 && N <= 8, "one bit per axis in GcodeAction::axes");
 
@@ -312,8 +315,8 @@ class GcodeInterpreter {
   GcodeState<N> state_;
 };
 
-template <uint8_t N>
-GcodeError GcodeInterpreter<N>::execute(const GcodeBlock& b, GcodeAction<N>& a) {
+template <uint8_t N, bool Arcs>
+GcodeError GcodeInterpreter<N, Arcs>::execute(const GcodeBlock& b, GcodeAction<N>& a) {
   using namespace gcode_detail;
   constexpr uint32_t kArcWords =
       gcode_letter_bit('I') | gcode_letter_bit('J') | gcode_letter_bit('K') | gcode_letter_bit('R');
@@ -436,6 +439,7 @@ GcodeError GcodeInterpreter<N>::execute(const GcodeBlock& b, GcodeAction<N>& a) 
   } else if (move) {
     kind = GcodeActionKind::move;
     if (arc_mode) {
+      if (!Arcs) return GcodeError::arcs_not_here;
       const GcodeError e = arc(b, m, a);
       if (e != GcodeError::none) return e;
       kind = GcodeActionKind::arc;
@@ -457,8 +461,8 @@ GcodeError GcodeInterpreter<N>::execute(const GcodeBlock& b, GcodeAction<N>& a) 
 }
 
 // The arc from state_ (start) to a.coord[] (end), into a; m: the line's modes.
-template <uint8_t N>
-GcodeError GcodeInterpreter<N>::arc(const GcodeBlock& b, const GcodeModal& m, GcodeAction<N>& a) const {
+template <uint8_t N, bool Arcs>
+GcodeError GcodeInterpreter<N, Arcs>::arc(const GcodeBlock& b, const GcodeModal& m, GcodeAction<N>& a) const {
   using namespace gcode_detail;
   const uint32_t letters = plane_axes(m.plane);
   const uint16_t offset_letters = plane_offsets(m.plane);

@@ -91,7 +91,8 @@ namespace am {
   X(target_out_of_range, "target beyond the position range")                 \
   X(bad_mode, "mode must be 0, 1, 2, 16, 32 or 64")                          \
   X(axis_has_no_modes, "axis has no excitation modes")                       \
-  X(mode_not_available, "mode not available on this axis")
+  X(mode_not_available, "mode not available on this axis")                   \
+  X(arcs_not_here, "G2/G3 arcs are not on the step engine yet")
 
 #define AM_GCODE_ERROR_ENUM(name, text) name,
 enum class GcodeError : uint8_t { AM_GCODE_ERRORS(AM_GCODE_ERROR_ENUM) };

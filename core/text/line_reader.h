@@ -10,7 +10,7 @@
 //   Line::none otherwise. too_long wins over bad_byte. CR, LF and CRLF all end
 //   a line; empty lines (nothing between two line ends) are ignored, so CRLF
 //   is one line end. After ready/too_long/bad_byte the next feed() starts the
-//   following line.
+//   following line. between_lines() is true when no line has begun.
 #pragma once
 #include <stdint.h>
 
@@ -46,6 +46,8 @@ class LineReader {
   }
 
   const char* text() const { return buf_; }
+  // No line begun: every byte fed so far ended in a line end.
+  bool between_lines() const { return len_ == 0 && !overflow_; }
   static constexpr uint8_t capacity() { return Capacity; }
 
  private:

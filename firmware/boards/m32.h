@@ -5,15 +5,13 @@
 // PC1/PC3/PC5/PC7, enables PB0..PB3 (active low). Endstops (switch to ground,
 // pulled up): X/Y/Z min on PD2/PD3/PD4, max on PA5/PA6/PA7. Thermistor on
 // ADC2 (PA2), heater MOSFET on OC2 (PD7), TEMP_OK output on PD6. One step is one
-// basic length unit of 1 um (the seed's BLU_PER_MM = 1000). Axis U: a
-// ULN2003 unipolar motor on PB4..PB7 (ISP pins: free once flashed), counted
-// like the Uno's U axis.
+// basic length unit of 1 um (the seed's BLU_PER_MM = 1000). The seed's four
+// axes only: the RAM (2 KB) goes to the look-ahead ring and, next, the heater.
 #pragma once
 #include "../../hal/avr/claims.h"
 #include "../../hal/avr/gpio.h"
 #include "../axes/axis_set.h"
 #include "../axes/step_dir_axis.h"
-#include "../axes/unipolar_axis.h"
 
 namespace board {
 
@@ -21,8 +19,7 @@ using hal::Pin;
 using Axes = AxisSet<StepDirAxis<'X', Pin<'C', 0>, Pin<'C', 1>, Pin<'B', 0>, true, 1000000>,
                      StepDirAxis<'Y', Pin<'C', 2>, Pin<'C', 3>, Pin<'B', 1>, true, 1000000>,
                      StepDirAxis<'Z', Pin<'C', 4>, Pin<'C', 5>, Pin<'B', 2>, true, 1000000>,
-                     StepDirAxis<'E', Pin<'C', 6>, Pin<'C', 7>, Pin<'B', 3>, true, 1000000>,
-                     UnipolarAxis<'U', Pin<'B', 4>, Pin<'B', 5>, Pin<'B', 6>, Pin<'B', 7>, 4096>>;
+                     StepDirAxis<'E', Pin<'C', 6>, Pin<'C', 7>, Pin<'B', 3>, true, 1000000>>;
 
 // Hardware claims (hal/avr/claims.h, checked when the image compiles): Timer1
 // is the step clock, the UART talks to the host, Timer0 is the time base
@@ -38,6 +35,7 @@ constexpr uint32_t kBaud = 115200;
 constexpr uint32_t kStepTimerHz = F_CPU;
 constexpr uint32_t kMaxStepRate = 40000;
 constexpr bool kGcode = true;  // the cnc program speaks G-code (docs/gcode.md)
+constexpr uint8_t kPathBlocks = 6;  // look-ahead ring of G-code blocks (firmware/engine/path.h); RAM: the stack needs 380 B
 constexpr uint32_t kDefaultRate = 4000;    // steps/s (4 mm/s)
 constexpr uint32_t kDefaultAccel = 20000;  // steps/s^2
 // Fastest ramp the planner keeps ahead of, with any axis at 40 kHz

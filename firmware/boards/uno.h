@@ -62,13 +62,14 @@ constexpr uint32_t kBaud = 115200;
 constexpr uint32_t kStepTimerHz = F_CPU;
 constexpr uint32_t kMaxStepRate = 20000;
 constexpr bool kGcode = true;  // the cnc program speaks G-code (docs/gcode.md)
+constexpr uint8_t kPathBlocks = 5;  // look-ahead ring of G-code blocks (firmware/engine/path.h); RAM: the stack needs 360 B
 constexpr uint32_t kDefaultRate = 400;   // steps/s
 constexpr uint32_t kDefaultAccel = 800;  // steps/s^2
-// Fastest ramp the planner keeps ahead of with the Z axis at 160 kHz, where
-// the step interrupt leaves the main loop a third of the CPU: 560000 was
-// still exact, 800000 starved (tests/sim/test_invariants.cpp,
-// docs/step-engine.md).
-constexpr uint32_t kMaxAccel = 400000;  // steps/s^2
+// Fastest ramp the exact trapezoid keeps ahead of with the Z axis at 160 kHz,
+// where the step interrupt leaves the main loop a fifth of the CPU: 350000
+// and 380000 were still exact, 400000 starved at the top of a 64000-step
+// triangle (tests/sim/test_invariants.cpp, docs/step-engine.md).
+constexpr uint32_t kMaxAccel = 300000;  // steps/s^2
 constexpr uint8_t kStepPulsePadCycles = 0;  // coils, not pulses: no width to meet
 constexpr uint8_t kTimerPulseCycles = 32;  // 2 us: A4988, DRV8825 (1.9 us) and TMC drivers
 

@@ -1,26 +1,25 @@
-// The planner: turns one accepted move into step segments for the engine.
+// The motion policy: what a move may be, and where the axes are.
 //
 // Contract
-//   A Move gives every axis of the board its steps (0 = stays). One axis
-//   moving is a one-axis block; several move together as a coordinated
-//   block: a straight line in steps, the axis with the most steps (the
-//   dominant one) stepping at every event and the others on its Bresenham
-//   schedule (core/motion/line_dda.h), all ending on their targets together.
-//   The ramp (rate F, acceleration A, deceleration D) is the dominant axis's.
-//
-//   The caller asks ready_for() (false: try again later), checks the ramp
-//   configuration, applies clamp() and then calls start(). pump() is called
-//   from the main loop and pushes as many segments as the engine's queue
-//   accepts, returning at once when it is full. idle() is true when every
-//   segment of the move has been queued. Positions are counted here when a
-//   move is accepted, in each axis's position units (steps; 1/64 full step
-//   for coil-driven axes, so moves in different excitation modes add up):
-//   what the protocol reports once the engine is idle is where the motors
-//   are.
+//   A Move gives every axis of the board its steps (0 = stays). check()
+//   refuses what the engine cannot run exactly, before anything moves.
+//   check_ramp() refuses a rate or acceleration the profile cannot time.
+//   clamp() holds a direct move's rate F so that no axis exceeds its own
+//   limit (the dominant axis's, and each other axis's scaled by its share of
+//   the events; a coordinated block steps from the C handler, so its events
+//   are held to the board's kMaxStepRate) and its acceleration A to the
+//   board's kMaxAccel, and says which it clamped, so the caller can report it
+//   before the move runs. G-code blocks get the same limits from the
+//   look-ahead planner's axis table (path.cpp).
+//   count() adds a queued move into the positions, in each axis's position
+//   units (steps; 1/64 full step for coil-driven axes, so moves in different
+//   excitation modes add up): what position() reports once the engine is
+//   idle is where the motors are. at_rest: nothing was moving or queued when
+//   the move was accepted (a coil axis's first step after a mode change may
+//   be a partial one).
 #pragma once
 #include <stdint.h>
 
-#include "../../core/motion/speed_ramp.h"
 #include "../board.h"
 
 namespace planner {
@@ -29,31 +28,28 @@ struct Move {
   int32_t steps[board::Axes::count];
 };
 
-// Why a move cannot run as given (checked before anything moves).
+// A direct move's profile: dominant-axis steps/s and steps/s^2, from rest to
+// rest.
+struct Ramp {
+  uint32_t rate;
+  uint32_t accel;
+};
+
 enum class Refusal : uint8_t { none, nothing_to_do, position_range, timer_axis_not_alone };
 Refusal check(const Move& move);
 
-// The motion policy: F is held so that no axis exceeds its own rate limit
-// (the dominant axis's limit, and each other axis's scaled by its share of
-// the events), and A and D to the board's kMaxAccel. A coordinated block
-// steps from the C handler, so its events are held to the board's
-// kMaxStepRate. Returns which were clamped (kClamped* bits), so the caller
-// can say so before the move runs.
-constexpr uint8_t kClampedRate = 1, kClampedAccel = 2, kClampedDecel = 4;
-uint8_t clamp(const Move& move, am::RampConfig& config);
+enum class RampError : uint8_t { none, zero_speed, zero_accel, rate_above_tick, accel_too_low };
+RampError check_ramp(const Ramp& ramp);
 
-// Whether `move` may start now: the last move is queued, it moved the same
-// axes or has ended (a move on other axes never starts under a running one,
-// so energising them cannot hold off the step interrupt), and a coordinated
-// block has an interpolator slot free.
-bool ready_for(const Move& move);
-void start(const Move& move, const am::RampConfig& config);
-// Queues `ms` milliseconds in which nothing steps, after everything queued
-// so far (call when idle()): a dwell timed by the step timer itself. A move
-// of the same axes as the last one queues behind it without a gap.
-void dwell(uint32_t ms);
-void pump();
-bool idle();
+constexpr uint8_t kClampedRate = 1, kClampedAccel = 2;
+uint8_t clamp(const Move& move, Ramp& ramp);
+
+// Steps of the axis with the most; which axes move; which move forward.
+uint32_t dominant_count(const Move& move);
+uint8_t mask_of(const Move& move);
+uint8_t dirs_of(const Move& move);
+
+void count(const Move& move, bool at_rest);
 int32_t position(uint8_t axis);
 
 }  // namespace planner

@@ -157,6 +157,8 @@ void init() { hal::step_timer::init(); }
 
 bool queue_full() { return step_queue.full(); }
 
+uint8_t queued() { return step_queue.size(); }
+
 bool block_available() {
   // In use: the running block and every later one already handed out.
   return !busy() || uint8_t(block_serial + 1 - running_block) < kBlockRing;

@@ -50,5 +50,7 @@ bool push(am::StepSegment segment);
 void start();
 bool busy();
 bool queue_full();
+// Segments queued, the running one included.
+uint8_t queued();
 
 }  // namespace engine

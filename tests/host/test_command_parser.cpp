@@ -18,14 +18,15 @@ ParseError parse(const char* line) {
 
 TEST(CommandParser, MoveWithAllWords) {
   Command c;
-  ASSERT_EQ(parse("MOVE X-400 F800 A1600 D3200", c), ParseError::none);
+  ASSERT_EQ(parse("MOVE X-400 F800 A1600", c), ParseError::none);
   EXPECT_EQ(c.kind, CommandKind::move);
   EXPECT_EQ(c.axis, 'X');
   EXPECT_EQ(c.steps, -400);
   EXPECT_EQ(c.rate, 800u);
   EXPECT_EQ(c.accel, 1600u);
-  EXPECT_EQ(c.decel, 3200u);
-  EXPECT_EQ(c.given, am::kGivenRate | am::kGivenAccel | am::kGivenDecel);
+  EXPECT_EQ(c.given, am::kGivenRate | am::kGivenAccel);
+  // One acceleration for both ramps: D is no word of MOVE.
+  EXPECT_EQ(parse("MOVE X-400 F800 A1600 D3200", c), ParseError::unexpected_word);
 }
 
 TEST(CommandParser, CaseAndBlanksDoNotMatter) {

@@ -47,7 +47,7 @@ struct ImageCase {
 };
 
 const ImageCase kImages[] = {
-    {"uno", 8, "MOVE Z100000 F160000 A400000", 'Z', 100000, 450},  // 1.0 s, 0.35 s of it at 160 kHz
+    {"uno", 8, "MOVE Z150000 F160000 A300000", 'Z', 150000, 600},  // 1.5 s, 0.4 s of it at 160 kHz
     {"m32", 64, "MOVE X24000 F40000 A800000", 'X', 24000, 280},    // 0.6 s
     {"m16", 64, "MOVE Z12000 F20000 A800000", 'Z', 12000, 280},    // 0.6 s
     {"m16-8mhz", 64, "MOVE Z6000 F10000 A800000", 'Z', 6000, 90},  // 0.6 s at 38400 baud
@@ -498,7 +498,7 @@ struct CostCase {
 // Software step edges only: a timer-pulsed edge (Uno Z) is made by the
 // compare match and cannot be late (tests/sim/test_step_timing.cpp).
 const CostCase kCosts[] = {
-    {"uno", 8, "MOVE X6000 F20000 A400000", 'X', 6000, 20000, 400000},
+    {"uno", 8, "MOVE X6000 F20000 A300000", 'X', 6000, 20000, 300000},
     {"m32", 64, "MOVE X40000 F40000 A800000", 'X', 40000, 40000, 800000},
     {"m16", 64, "MOVE Z20000 F20000 A800000", 'Z', 20000, 20000, 800000},
     {"m16-8mhz", 64, "MOVE Z10000 F10000 A800000", 'Z', 10000, 10000, 800000},
@@ -552,7 +552,7 @@ TEST(Clock, CostsTheStepPathOnlyTheOverflowVectorsEntry) {
     // Every software edge against the schedule; its interrupt: the last
     // step interrupt entered before it.
     const std::vector<uint32_t> plan =
-        sim::planned_schedule(c.steps, am::RampConfig{m.f_cpu(), c.rate, c.accel, c.accel});
+        sim::planned_schedule(c.steps, sim::Ramp{m.f_cpu(), c.rate, c.accel});
     ASSERT_EQ(plan.size(), c.steps);
     int64_t held_late = INT64_MIN, other_late = INT64_MIN, other_early = INT64_MAX;
     uint64_t due = edges[0];

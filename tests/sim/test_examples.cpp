@@ -38,7 +38,7 @@ TEST(Examples, UnoDemo) {
 TEST(Examples, M32Demo) {
   auto m = simtest::run("m32", job("m32-demo.txt"), 30);
   EXPECT_TRUE(m->serial().errors().empty());
-  const std::vector<std::string> messages = {"warning: F clamped to 40000", "pos X:0 Y:-15000 Z:500 E:3000 U:2048"};
+  const std::vector<std::string> messages = {"warning: F clamped to 40000", "pos X:0 Y:-15000 Z:500 E:3000"};
   EXPECT_EQ(m->serial().messages(), messages);
   EXPECT_DOUBLE_EQ(m->axis('Y')->steps(), -15000);
 }

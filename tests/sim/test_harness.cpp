@@ -33,7 +33,7 @@ TEST(Harness, AHungRunEndsAtItsCycleBudget) {
 TEST(Harness, EveryStepIsOneStepInterrupt) {
   // Uno axis Z: each step is one compare-match vector (no interval here is
   // longer than the 16-bit timer), so the vector's count is the step count.
-  auto m = simtest::run("uno", {"MOVE Z1000 F50000 A400000"});
+  auto m = simtest::run("uno", {"MOVE Z1000 F50000 A300000"});
   ASSERT_EQ(m->axis('Z')->step_cycles.size(), 1000u);
   const sim::IsrStats& step = m->isr_stats().at(11);  // TIMER1_COMPA on the ATmega328P
   EXPECT_EQ(step.count, 1000u);

@@ -78,14 +78,14 @@ TEST(Protocol, APositionThatWouldWrapIsRefused) {
   // Positions are 32-bit counters (1/64 full step on coil axes). Set them near
   // both ends of the range in the firmware's RAM, then move up to the end and
   // one step past it: the first is run and reported, the second refused.
-  const std::string elf = simtest::image("m32");
+  const std::string elf = simtest::image("uno");
   const uint16_t positions = sim::read_data_symbol(elf, "_ZN7planner12_GLOBAL__N_19positionsE");
   struct Case {
     char axis;
     int index;       // in the board's axis list
     int32_t units;   // position units per step
   };
-  for (const Case c : {Case{'X', 0, 1}, Case{'U', 4, 64}}) {
+  for (const Case c : {Case{'Z', 3, 1}, Case{'U', 2, 64}}) {
     for (const int sign : {1, -1}) {
       sim::Machine m(elf);
       const std::string move = std::string("MOVE ") + c.axis + std::to_string(sign * 7);

@@ -12,11 +12,10 @@ namespace {
 constexpr int64_t kJitterBound = 12;    // cycles, peak to peak, software pulses
 constexpr int64_t kTimerPulseSpread = 0;  // hardware edges: exact
 
-void expect_schedule(const std::string& image, char axis, uint32_t steps, const am::RampConfig& cfg,
+void expect_schedule(const std::string& image, char axis, uint32_t steps, const sim::Ramp& cfg,
                      int64_t jitter_bound = kJitterBound) {
-  const std::string line = std::string("MOVE ") + axis + std::to_string(steps) + " F" +
-                           std::to_string(cfg.max_rate) + " A" + std::to_string(cfg.accel) + " D" +
-                           std::to_string(cfg.decel);
+  const std::string line = std::string("MOVE ") + axis + std::to_string(steps) + " F" + std::to_string(cfg.rate) +
+                           " A" + std::to_string(cfg.accel);
   auto m = simtest::run(image, {line}, 20);
   const std::vector<uint32_t> expected = sim::planned_schedule(steps, cfg);
   ASSERT_EQ(expected.size(), steps);
@@ -35,31 +34,31 @@ void expect_schedule(const std::string& image, char axis, uint32_t steps, const 
 }  // namespace
 
 TEST(StepTiming, StepDirMoveMatchesTheRampToTheCycle) {
-  expect_schedule("m32", 'X', 400, am::RampConfig{16000000, 4000, 8000, 8000});
+  expect_schedule("m32", 'X', 400, sim::Ramp{16000000, 4000, 8000});
 }
 
-TEST(StepTiming, TriangleWithUnequalRatesMatches) {
-  expect_schedule("m32", 'Y', 300, am::RampConfig{16000000, 20000, 30000, 90000});
+TEST(StepTiming, TriangleMatches) {
+  expect_schedule("m32", 'Y', 300, sim::Ramp{16000000, 20000, 30000});
 }
 
 TEST(StepTiming, ShieldLatchStepsMatchTheRampToTheCycle) {
-  expect_schedule("uno", 'X', 400, am::RampConfig{16000000, 600, 1200, 1200});
+  expect_schedule("uno", 'X', 400, sim::Ramp{16000000, 600, 1200});
 }
 
 TEST(StepTiming, IntervalsLongerThanTheTimerAreExact) {
-  // 4 steps/s^2, the gentlest the 16 MHz ramp takes, makes c0 = 0.676 * 16e6
-  // * sqrt(2/4) = 7.6 M cycles, 117 timer periods: the period counting must
-  // not lose or add a tick.
-  expect_schedule("m16", 'Z', 6, am::RampConfig{16000000, 100, 4, 4});
-  // One step/s^2 less and the first delay no longer fits the ramp: refused.
-  auto m = simtest::run("m16", {"MOVE Z6 F100 A3"});
+  // 4 steps/s^2 makes the first interval 16e6 * sqrt(2/4) = 11.3 M cycles,
+  // 173 timer periods: the period counting must not lose or add a tick.
+  expect_schedule("m16", 'Z', 6, sim::Ramp{16000000, 100, 4});
+  // At 1 step/s^2 the first interval (22.6 M cycles) no longer fits a
+  // segment (16.8 M): refused.
+  auto m = simtest::run("m16", {"MOVE Z6 F100 A1"});
   ASSERT_EQ(m->serial().errors().size(), 1u);
   EXPECT_EQ(m->serial().errors()[0], "error: acceleration too low for the timer");
   EXPECT_TRUE(m->axis('Z')->step_cycles.empty());
 }
 
 TEST(StepTiming, EightMegahertzImageRunsOnItsOwnClock) {
-  expect_schedule("m16-8mhz", 'Z', 200, am::RampConfig{8000000, 2000, 6000, 6000});
+  expect_schedule("m16-8mhz", 'Z', 200, sim::Ramp{8000000, 2000, 6000});
 }
 
 TEST(StepTiming, TimerPulsedAxisIsExactToTheCycle) {
@@ -67,9 +66,9 @@ TEST(StepTiming, TimerPulsedAxisIsExactToTheCycle) {
   // latency cannot move an edge: every pulse on its tick, zero spread. (Needs
   // simavr patch J: stock simavr stamps timer events at the next instruction
   // boundary, 0..3 cycles late.)
-  expect_schedule("uno", 'Z', 400, am::RampConfig{16000000, 4000, 8000, 8000}, kTimerPulseSpread);
-  // A fast move whose ramp is planned in sqrt(n) runs (speed_ramp.h).
-  expect_schedule("uno", 'Z', 20000, am::RampConfig{16000000, 60000, 200000, 200000}, kTimerPulseSpread);
+  expect_schedule("uno", 'Z', 400, sim::Ramp{16000000, 4000, 8000}, kTimerPulseSpread);
+  // A fast move, its ramps in runs of many steps (trapezoid.h).
+  expect_schedule("uno", 'Z', 20000, sim::Ramp{16000000, 60000, 200000}, kTimerPulseSpread);
 }
 
 TEST(StepTiming, TimerPulseWidthMeetsDriverMinimum) {
@@ -126,5 +125,5 @@ TEST(StepTiming, ACruiseLongerThanOneSegmentStaysExact) {
   // 150000 steps at 160 kHz: the cruise is about 86000 steps, more than one
   // segment's 16-bit count, so the planner splits it and the fast path hands
   // over between the parts. Every step still lands on the schedule.
-  expect_schedule("uno", 'Z', 150000, am::RampConfig{16000000, 160000, 400000, 400000}, kTimerPulseSpread);
+  expect_schedule("uno", 'Z', 150000, sim::Ramp{16000000, 160000, 300000}, kTimerPulseSpread);
 }

@@ -61,7 +61,7 @@ uint64_t ps_per_cycle(const sim::Machine& m) { return 1000000000000ull / m.f_cpu
 
 TEST(Vcd, StepEdgesAndInterruptWindowsMatchTheReport) {
   const std::string path = temp_path("m32.vcd");
-  auto m = traced("m32", {"MOVE X2000 F20000 A200000", "MOVE Y-500 F5000 A50000", "MOVE U200 F500 A1000"}, path);
+  auto m = traced("m32", {"MOVE X2000 F20000 A200000", "MOVE Y-500 F5000 A50000"}, path);
   const vcdread::Trace t = vcdread::read(path);
   ASSERT_EQ(t.error, "");
   EXPECT_EQ(t.redundant, 0u) << "only changes are written";
@@ -69,7 +69,7 @@ TEST(Vcd, StepEdgesAndInterruptWindowsMatchTheReport) {
   EXPECT_NE(t.comment.find("62500 ps"), std::string::npos) << t.comment;
   // Every pin the board descriptor names is there, grouped by axis.
   for (const char* name : {"m32.X.step_PC0", "m32.X.dir_PC1", "m32.X.enable_PB0", "m32.Y.step_PC2", "m32.Z.step_PC4",
-                           "m32.E.step_PC6", "m32.U.in1_PB4", "m32.U.in4_PB7", "m32.isr.v7_TIMER1_COMPA"}) {
+                           "m32.E.step_PC6", "m32.isr.v7_TIMER1_COMPA"}) {
     EXPECT_TRUE(t.by_name(name)) << name;
   }
   // The groups keep only vectors that ran and duties that were set: one
@@ -126,7 +126,7 @@ TEST(Vcd, HardwareTimedStepPinIsTracedEdgeForEdge) {
   // Uno axis Z: STEP is OC1A, driven by the timer (simavr flags those pin
   // changes as outputs); every pulse must show.
   const std::string path = temp_path("uno-z.vcd");
-  auto m = traced("uno", {"MOVE Z1000 F50000 A400000", "MOVE Z-300 F50000 A400000"}, path);
+  auto m = traced("uno", {"MOVE Z1000 F50000 A300000", "MOVE Z-300 F50000 A300000"}, path);
   const vcdread::Trace t = vcdread::read(path);
   ASSERT_EQ(t.error, "");
   const vcdread::Var* step = t.by_name("uno.Z.step_PB1");
@@ -253,7 +253,7 @@ TEST(Progress, ATimedOutRunEndsWithItsOwnFigures) {
 }
 
 TEST(Progress, RunningInSlicesChangesNothing) {
-  const std::vector<std::string> job = {"MOVE X60 F400 A800", "MOVE Z3000 F40000 A400000", "POS"};
+  const std::vector<std::string> job = {"MOVE X60 F400 A800", "MOVE Z3000 F40000 A300000", "POS"};
   auto whole = simtest::run("uno", job);
   sim::Machine sliced(simtest::image("uno"));
   for (const auto& l : job) sliced.serial().add_line(l);

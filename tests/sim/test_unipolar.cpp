@@ -44,9 +44,9 @@ TEST(Unipolar, HalfStepReverseWalksTheTableBackwards) {
 }
 
 TEST(Unipolar, WaveAndTwoPhaseOnTheOtherBoards) {
-  // ATmega32 on PB4..PB7: wave 0x01, 0x02, 0x04, 0x08.
+  // Uno on PC0..PC3: wave 0x01, 0x02, 0x04, 0x08.
   const std::vector<uint8_t> wave = {0x00, 0x01, 0x02, 0x04, 0x08, 0x01};
-  EXPECT_EQ(patterns("m32", {"MODE U0", "MOVE U4"}, 'B', 4), wave);
+  EXPECT_EQ(patterns("uno", {"MODE U0", "MOVE U4"}, 'C', 0), wave);
   // ATmega16 on PC2..PC5, default two-phase: held B-A+ then 0x03, 0x06, 0x0C, 0x09.
   const std::vector<uint8_t> two_phase = {0x00, 0x09, 0x03, 0x06, 0x0C, 0x09};
   EXPECT_EQ(patterns("m16", {"MOVE U4"}, 'C', 2), two_phase);

@@ -1,12 +1,14 @@
 #include "gcode.h"
 
 #include <avr/pgmspace.h>
+#include <math.h>
 
 #define AM_TEXT(s) PSTR(s)
 #include "../../../core/text/gcode_interpreter.h"
 #include "../../../hal/avr/uart.h"
 #include "../../axes/axis_modes.h"
 #include "../../board.h"
+#include "../../engine/path.h"
 #include "../../engine/planner.h"
 #include "../../engine/step_engine.h"
 #include "reply.h"
@@ -43,27 +45,15 @@ const am::GcodeAxis AxisTable<AxisSet<A...>>::value[sizeof...(A)] = {
     am::GcodeAxis{A::name, modes_of<A>(0, 0), A::descriptor().steps_per_m * OwnUnits<A>::per_full_step}...};
 
 // Built on first use, so a board without G-code links none of it.
-am::GcodeInterpreter<kAxes>& interpreter() {
-  static am::GcodeInterpreter<kAxes> instance(AxisTable<board::Axes>::value);
+// No arcs on the chip yet: G2/G3 are refused whole (arcs_not_here).
+using Interpreter = am::GcodeInterpreter<kAxes, false>;
+Interpreter& interpreter() {
+  static Interpreter instance(AxisTable<board::Axes>::value);
   return instance;
 }
 am::GcodeAction<kAxes> action;  // the accepted line's, until execute() has run it
 bool pending;
 int32_t coord_before[kAxes];  // program position before the pending line
-
-uint32_t magnitude(int32_t v) { return v < 0 ? 0u - uint32_t(v) : uint32_t(v); }
-
-// The move's length along its path, 1/10000 mm: every axis but E, or E alone
-// when nothing else moves (as printers count extrusion-only moves).
-uint32_t path_length() {
-  uint64_t sum = 0, e = 0;
-  for (uint8_t i = 0; i < kAxes; ++i) {
-    const uint64_t d = magnitude(action.coord[i] - coord_before[i]);
-    if (board::Axes::name_at(i) == 'E') e = d * d;
-    else sum += d * d;
-  }
-  return uint32_t(am::isqrt64(sum ? sum : e));
-}
 
 void report_position() {
   char buf[14];
@@ -84,7 +74,15 @@ void report_position() {
   hal::uart::write('\n');
 }
 
-bool motion_done() { return planner::idle() && !engine::busy(); }
+// Whether everything before has run; if not, the path is told to start on
+// what it holds, since nothing can follow until it has.
+bool motion_done() {
+  if (!path::idle()) {
+    path::drain();
+    return false;
+  }
+  return !engine::busy();
+}
 
 // Steps of each axis's current mode from where the planner has it to the
 // target (position units; a coil axis's step is 64 / microsteps of them),
@@ -100,34 +98,37 @@ planner::Move move_of_action() {
   return m;
 }
 
-// A G0/G1 (accept() has checked it): one coordinated block to the target.
+// A feed beyond what the axes can do runs at what they can (the planner
+// holds the block to its limiting axis, as planner::clamp() does a direct
+// move): said before the block moves.
+void warn_if_clamped(const planner::Move& m, const float (&delta_mm)[kAxes]) {
+  float path = 0, other = 0;
+  for (uint8_t i = 0; i < kAxes; ++i) (board::Axes::name_at(i) == 'E' ? other : path) += delta_mm[i] * delta_mm[i];
+  const float length = sqrtf(path > 0 ? path : other);
+  if (!(length > 0)) return;
+  const float per_mm = float(planner::dominant_count(m)) / length;
+  const float rate = float(action.feed) * (1e-4f / 60) * per_mm;
+  planner::Ramp ramp{rate < 4e9f ? uint32_t(rate) + 1 : 0xFFFFFFFFul, board::kDefaultAccel};
+  if (!(planner::clamp(m, ramp) & planner::kClampedRate)) return;
+  char buf[14];
+  am::format_fixed(buf, int32_t(float(ramp.rate) * 60 / per_mm), 0);
+  hal::uart::write_P(PSTR("warning: F clamped to "));
+  hal::uart::write(buf);
+  hal::uart::write_P(PSTR(" mm/min\n"));
+}
+
+// A G0/G1 (accept() has checked it): one block into the look-ahead ring,
+// its length and direction from the program coordinates.
 bool move() {
   const planner::Move m = move_of_action();
-  uint32_t events = 0;
-  for (uint8_t i = 0; i < kAxes; ++i)
-    if (magnitude(m.steps[i]) > events) events = magnitude(m.steps[i]);
-  if (events == 0) return true;
-  if (!planner::ready_for(m)) return false;
-  // Dominant axis rate = feed * events / length (feed per minute).
-  uint32_t rate = 0xFFFFFFFFul;
-  const uint32_t length = path_length();
-  if (!action.rapid && length) {
-    const uint64_t r = (uint64_t(uint32_t(action.feed)) * events) / (uint64_t(length) * 60u);
-    rate = r ? (r > 0xFFFFFFFFull ? 0xFFFFFFFFul : uint32_t(r)) : 1;
-  }
-  am::RampConfig cfg{board::kStepTimerHz, rate, board::kDefaultAccel, board::kDefaultAccel};
-  if (cfg.max_rate > cfg.tick_hz) cfg.max_rate = cfg.tick_hz;
-  const uint8_t clamped = planner::clamp(m, cfg);
-  // A feed beyond the machine is held to it and said; a rapid is the
-  // machine's rate by definition.
-  if ((clamped & planner::kClampedRate) && !action.rapid && length) {
-    char buf[14];
-    am::format_fixed(buf, int32_t((uint64_t(cfg.max_rate) * length * 60u / events) / 10000u), 0);
-    hal::uart::write_P(PSTR("warning: F clamped to "));
-    hal::uart::write(buf);
-    hal::uart::write_P(PSTR(" mm/min\n"));
-  }
-  planner::start(m, cfg);
+  bool steps = false;
+  for (uint8_t i = 0; i < kAxes; ++i) steps |= m.steps[i] != 0;
+  if (!steps) return true;
+  float delta_mm[kAxes];
+  for (uint8_t i = 0; i < kAxes; ++i) delta_mm[i] = float(action.coord[i] - coord_before[i]) * 1e-4f;
+  // bad_feed cannot come back: the interpreter refuses F <= 0 on a G1.
+  if (path::add(m, delta_mm, float(action.feed) * 1e-4f, action.rapid) == path::Added::full) return false;
+  if (!action.rapid) warn_if_clamped(m, delta_mm);
   return true;
 }
 
@@ -156,9 +157,7 @@ bool accept(const char* line) {
   }
   // What the machine cannot run is refused now, with the state put back.
   const char* refusal = nullptr;
-  if (action.kind == am::GcodeActionKind::arc) {
-    refusal = PSTR("G2/G3 arcs are not on the step engine yet");
-  } else if (action.kind == am::GcodeActionKind::move) {
+  if (action.kind == am::GcodeActionKind::move) {
     switch (planner::check(move_of_action())) {
       case planner::Refusal::position_range: refusal = PSTR("move would leave the position range"); break;
       case planner::Refusal::timer_axis_not_alone: refusal = PSTR("the hardware-timed axis moves alone"); break;
@@ -181,8 +180,11 @@ bool execute() {
       if (!move()) return false;
       break;
     case am::GcodeActionKind::dwell:
-      if (!planner::idle()) return false;
-      planner::dwell(action.dwell_ms);
+      if (!path::idle()) {
+        path::drain();
+        return false;
+      }
+      path::dwell(action.dwell_ms);
       break;
     case am::GcodeActionKind::report_position:
       report_position();
@@ -193,7 +195,7 @@ bool execute() {
     case am::GcodeActionKind::release:
     case am::GcodeActionKind::program_end:
       if (!motion_done()) return false;
-      if (action.kind == am::GcodeActionKind::release) board::Axes::release();
+      if (action.kind == am::GcodeActionKind::release) path::release();
       break;
     case am::GcodeActionKind::set_mode:
       if (!motion_done()) return false;

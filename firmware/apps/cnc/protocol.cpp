@@ -7,6 +7,7 @@
 #include "../../../hal/avr/uart.h"
 #include "../../board.h"
 #include "../../axes/axis_modes.h"
+#include "../../engine/path.h"
 #include "../../engine/planner.h"
 #include "../../engine/step_engine.h"
 #include "gcode.h"
@@ -54,7 +55,15 @@ void warn_clamped(char word, uint32_t value) {
   hal::uart::write('\n');
 }
 
-bool motion_done() { return planner::idle() && !engine::busy(); }
+// Whether everything before has run (the path is told to start on what it
+// holds: nothing can follow until it has).
+bool motion_done() {
+  if (!path::idle()) {
+    path::drain();
+    return false;
+  }
+  return !engine::busy();
+}
 
 // The longest move: positions are kept in 1/64 full step for coil axes,
 // and 2^24 * 64 still fits the 32-bit counters.
@@ -77,7 +86,8 @@ bool execute(const am::Command& c) {
         }
         move.steps[axis] = c.axis_steps[k];
       }
-      if (!planner::ready_for(move)) return false;
+      if (!path::idle()) path::drain();
+      if (!path::ready_for(move)) return false;
       switch (planner::check(move)) {
         case planner::Refusal::none: break;
         case planner::Refusal::nothing_to_do: ok(); return true;
@@ -86,22 +96,19 @@ bool execute(const am::Command& c) {
           error(PSTR("the hardware-timed axis moves alone"));
           return true;
       }
-      am::RampConfig cfg{board::kStepTimerHz,
-                         (c.given & am::kGivenRate) ? c.rate : board::kDefaultRate,
-                         (c.given & am::kGivenAccel) ? c.accel : board::kDefaultAccel, 0};
-      cfg.decel = (c.given & am::kGivenDecel) ? c.decel : cfg.accel;
-      switch (am::SpeedRamp::check(cfg)) {
-        case am::RampError::none: break;
-        case am::RampError::zero_speed: error(PSTR("speed must be above 0")); return true;
-        case am::RampError::zero_accel: error(PSTR("acceleration must be above 0")); return true;
-        case am::RampError::rate_above_tick: error(PSTR("speed above the timer clock")); return true;
-        case am::RampError::out_of_range: error(PSTR("acceleration too low for the timer")); return true;
+      planner::Ramp ramp{(c.given & am::kGivenRate) ? c.rate : board::kDefaultRate,
+                         (c.given & am::kGivenAccel) ? c.accel : board::kDefaultAccel};
+      switch (planner::check_ramp(ramp)) {
+        case planner::RampError::none: break;
+        case planner::RampError::zero_speed: error(PSTR("speed must be above 0")); return true;
+        case planner::RampError::zero_accel: error(PSTR("acceleration must be above 0")); return true;
+        case planner::RampError::rate_above_tick: error(PSTR("speed above the timer clock")); return true;
+        case planner::RampError::accel_too_low: error(PSTR("acceleration too low for the timer")); return true;
       }
-      const uint8_t clamped = planner::clamp(move, cfg);
-      if (clamped & planner::kClampedRate) warn_clamped('F', cfg.max_rate);
-      if (clamped & planner::kClampedAccel) warn_clamped('A', cfg.accel);
-      if (clamped & planner::kClampedDecel) warn_clamped('D', cfg.decel);
-      planner::start(move, cfg);
+      const uint8_t clamped = planner::clamp(move, ramp);
+      if (clamped & planner::kClampedRate) warn_clamped('F', ramp.rate);
+      if (clamped & planner::kClampedAccel) warn_clamped('A', ramp.accel);
+      path::add_direct(move, ramp);
       ok();
       return true;
     }
@@ -119,7 +126,7 @@ bool execute(const am::Command& c) {
       return true;
     case am::CommandKind::release:
       if (!motion_done()) return false;
-      board::Axes::release();
+      path::release();
       ok();
       return true;
     case am::CommandKind::wait:
@@ -175,7 +182,7 @@ void banner() {
 }
 
 void poll() {
-  planner::pump();
+  path::pump();
   if (waiting != Waiting::nothing) {
     const bool done = waiting == Waiting::command ? execute(command) : (!board::kGcode || gcode::execute());
     if (!done) return;
@@ -186,6 +193,8 @@ void poll() {
     const Reader::Line line = reader.feed(char(hal::uart::read()));
     if (line != Reader::Line::none) on_line(line);
   }
+  // Nothing more on its way for now: the path may start on what it holds.
+  if (waiting == Waiting::nothing && !hal::uart::available() && reader.between_lines()) path::start();
 }
 
 }  // namespace protocol

@@ -1,0 +1,202 @@
+#include "path.h"
+
+#include "../../core/motion/path_planner.h"
+#include "../../core/motion/trapezoid.h"
+#include "clock.h"
+#include "step_engine.h"
+
+namespace path {
+namespace {
+
+constexpr uint8_t kAxes = board::Axes::count;
+using Block = am::PathBlock<kAxes>;
+using Plan = am::PathPlanner<kAxes, board::kPathBlocks>;
+
+// A G-code block is taken once the engine's queue holds this few segments:
+// each is about a millisecond of motion or more except near rest
+// (trapezoid.h keeps its runs as long as the curvature allows), time enough
+// to plan the next.
+constexpr uint8_t kLowWater = 4;
+constexpr float kJunctionDeviationMm = 0.01f;
+
+constexpr uint32_t highest_rate(uint8_t i = 0, uint32_t most = board::kMaxStepRate) {
+  return i == kAxes ? most
+                    : highest_rate(uint8_t(i + 1), board::Axes::max_rate_at(i) > most ? board::Axes::max_rate_at(i) : most);
+}
+
+// The planner's axis table, built on the stack for its constructor (a
+// static table would sit in RAM for good). Rates are the axis's own limit
+// or the coordinated handler's; steps per mm follow the axis's excitation
+// mode (set on add(): modes change at rest).
+template <typename Set>
+struct Planned;
+template <typename... A>
+struct Planned<AxisSet<A...>> {
+  static Plan make() {
+    const am::PathAxis axes[kAxes] = {
+        am::PathAxis{1.0f, float(OwnMaxRate<A>::value ? OwnMaxRate<A>::value : board::kMaxStepRate),
+                     float(board::kDefaultAccel), A::name != 'E'}...};
+    return Plan(axes, kJunctionDeviationMm, float(highest_rate()));
+  }
+};
+
+// Built on first use: a board without G-code links no ring.
+Plan& plan() {
+  static Plan instance = Planned<board::Axes>::make();
+  return instance;
+}
+
+bool ring_empty() { return !board::kGcode || plan().count() == 0; }
+
+am::TrapezoidRuns runs;
+bool generating;       // the running block has runs left to queue
+uint8_t axis_mask, dir_mask, serial;
+uint8_t energised;     // axes a G-code block has energised (they stay so until released)
+bool direct_waiting;   // a direct move to queue once the ring is empty
+am::TrapezoidBlock direct;
+planner::Move direct_move;
+uint8_t direct_mask, direct_dirs;
+uint32_t dwell_ms;     // of a dwell still to be queued
+bool starting, draining;
+uint32_t last_add;     // clock tick of the last G-code block
+bool engine_was_busy;  // at the end of the last pump()
+bool exit_moving;      // the last block ends at speed: the next must follow at once
+uint16_t starvations;
+
+void set_steps_per_mm() {
+  for (uint8_t i = 0; i < kAxes; ++i) {
+    const float units_per_mm = float(board::Axes::steps_per_m_at(i)) * board::Axes::units_per_full_step_at(i) / 1000.0f;
+    plan().set_steps_per_mm(i, units_per_mm / float(board::Axes::units_for(i, 1, false)));
+  }
+}
+
+bool take_now() {
+  if (plan().full() || draining) return true;
+  if (engine::busy()) return engine::queued() <= kLowWater;
+  // At rest: at once if the last block ended at speed (the engine ran dry
+  // under it), else on the start rule.
+  return exit_moving || (starting && clock::reached(last_add + clock::ms(kStartDelayMs)));
+}
+
+void begin(const am::TrapezoidBlock& b, const int32_t (&steps)[kAxes], uint8_t mask, uint8_t dirs) {
+  if (mask & (mask - 1)) engine::begin_block(serial)->start(steps);
+  runs.start(b, board::kStepTimerHz);
+  axis_mask = mask;
+  dir_mask = dirs;
+  exit_moving = b.exit > 0;
+  generating = true;
+}
+
+// Starts the next block's runs; false when none is due or the engine has no
+// interpolator slot for it yet (every block waits for one, so none is
+// taken that could not start).
+bool take() {
+  if (!engine::block_available()) return false;
+  if (direct_waiting) {
+    begin(direct, direct_move.steps, direct_mask, direct_dirs);
+    direct_waiting = false;
+    return true;
+  }
+  if (ring_empty() || !take_now()) return false;
+  const Block* b = plan().take();
+  uint8_t mask = 0, dirs = 0;
+  for (uint8_t i = 0; i < kAxes; ++i) {
+    if (b->steps[i]) mask |= uint8_t(1u << i);
+    if (b->steps[i] > 0) dirs |= uint8_t(1u << i);
+  }
+  begin(am::TrapezoidBlock{b->events, b->entry, b->cruise, b->exit, b->accel}, b->steps, mask, dirs);
+  plan().done();
+  return true;
+}
+
+// Whole milliseconds, one timer period each, no axis stepping.
+bool queue_dwell() {
+  const uint16_t ms = dwell_ms > 0xFFFF ? 0xFFFF : uint16_t(dwell_ms);
+  if (!engine::push(am::StepSegment::make(F_CPU / 1000, ms, 0, 0))) return false;
+  dwell_ms -= ms;
+  return true;
+}
+
+}  // namespace
+
+Added add(const planner::Move& move, const float (&delta_mm)[kAxes], float feed_mm_per_min, bool rapid) {
+  if (direct_waiting || dwell_ms || plan().full()) return Added::full;
+  set_steps_per_mm();
+  const bool at_rest = idle() && !engine::busy();
+  switch (plan().add(move.steps, delta_mm, feed_mm_per_min, rapid)) {
+    case Plan::Status::bad_feed: return Added::bad_feed;
+    case Plan::Status::full: return Added::full;
+    default: break;
+  }
+  last_add = clock::now();
+  // Energised before counting: a coil axis's first energising snaps it to
+  // its mode's grid, and the count starts from there (planner::count()).
+  const uint8_t mask = planner::mask_of(move);
+  if (mask & ~energised) {
+    board::Axes::energise(uint8_t(mask & ~energised));
+    energised |= mask;
+  }
+  planner::count(move, at_rest);
+  return Added::queued;
+}
+
+bool ready_for(const planner::Move& move) {
+  if (!idle()) return false;
+  return !engine::busy() || axis_mask == planner::mask_of(move);
+}
+
+void add_direct(const planner::Move& move, const planner::Ramp& ramp) {
+  direct_move = move;
+  direct_mask = planner::mask_of(move);
+  direct_dirs = planner::dirs_of(move);
+  direct = am::TrapezoidBlock{planner::dominant_count(move), 0.0f, float(ramp.rate), 0.0f, float(ramp.accel)};
+  const bool at_rest = !engine::busy();
+  board::Axes::energise(direct_mask);
+  planner::count(move, at_rest);
+  direct_waiting = true;
+  pump();
+}
+
+void dwell(uint32_t ms) { dwell_ms = ms; }
+
+void release() {
+  board::Axes::release();
+  energised = 0;
+}
+void start() { starting = true; }
+void drain() { draining = true; }
+
+void pump() {
+  if (engine_was_busy && !engine::busy() && (generating || exit_moving)) ++starvations;
+  for (;;) {
+    if (engine::queue_full()) break;
+    if (!generating) {
+      if (dwell_ms) {
+        queue_dwell();
+        continue;
+      }
+      if (!take()) break;
+    }
+    const am::StepRun r = runs.next_run();
+    if (r.count == 0) {
+      generating = false;
+      continue;
+    }
+    am::StepSegment s = am::StepSegment::make(r.interval, r.count, axis_mask, dir_mask);
+    s.block = serial;
+    engine::push(s);
+  }
+  // From rest the engine starts on a full queue, or on all there is for now.
+  if (engine::queue_full() || !generating) engine::start();
+  engine_was_busy = engine::busy();
+  if (idle()) {
+    starting = false;
+    draining = false;
+  }
+}
+
+bool idle() { return !generating && !direct_waiting && dwell_ms == 0 && ring_empty(); }
+
+uint16_t starved() { return starvations; }
+
+}  // namespace path

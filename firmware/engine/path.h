@@ -1,0 +1,64 @@
+// The path: everything that moves goes through here into the step engine.
+// G-code's straight blocks pass the look-ahead planner
+// (core/motion/path_planner.h), so a polyline runs through its vertices;
+// a direct move (the MOVE command) is one block from rest to rest with its
+// own rate and acceleration; a dwell is an idle stretch in the queue. Every
+// block is timed by the exact trapezoid generator (core/motion/trapezoid.h):
+// each step within a fifth of a step of constant-acceleration kinematics.
+//
+// Contract
+//   add() queues one G-code block: the steps of every axis (planner::Move,
+//   checked with planner::check() first), the program coordinates' change in
+//   mm (the path's length and direction), the feed in mm/min, rapid for G0.
+//   It answers full (nothing changed: call again) while the ring is full or
+//   a direct move or dwell waits to be queued.
+//   ready_for(move) says whether a direct move may be queued now: the path
+//   is idle, and the engine is at rest or runs the same axes (energising
+//   other axes under a running move could hold the step interrupt off).
+//   add_direct() then queues it (planner::check_ramp() and clamp() first);
+//   dwell(ms) queues an idle stretch when the path is idle: after everything
+//   queued so far, timed by the step timer to the tick.
+//   Positions are counted when a block is queued (planner::count()).
+//   pump() runs from the main loop. It takes the oldest planned G-code block
+//   as late as it can: when the engine's queue runs low, when the ring is
+//   full, or, with the engine at rest, once start() has said no more input
+//   is on its way for now and kStartDelayMs have passed since the last block
+//   arrived (so the first block of a program is planned with those after
+//   it). A taken block's speeds are final; its segments go to the engine as
+//   the queue takes them. drain() makes pump() take every block now (a
+//   command that waits for the motion to end calls it). idle() is true when
+//   every block has been handed to the engine.
+//   starved() counts the times the engine ran dry while a block still had
+//   segments to queue or ended at speed (the planner fell behind the motion).
+//
+// Why
+//   A taken block is fixed (its exit speed is the next block's entry), so
+//   taking it late gives the planner the most blocks to look ahead over.
+//   Directions change between chained blocks at speed: the engine sets them
+//   when it loads a segment, one whole step interval before that segment's
+//   first step edge, which is the drivers' set-up time with room to spare.
+#pragma once
+#include <stdint.h>
+
+#include "../board.h"
+#include "planner.h"
+
+namespace path {
+
+constexpr uint16_t kStartDelayMs = 50;
+
+enum class Added : uint8_t { queued, full, bad_feed };
+Added add(const planner::Move& move, const float (&delta_mm)[board::Axes::count], float feed_mm_per_min, bool rapid);
+bool ready_for(const planner::Move& move);
+void add_direct(const planner::Move& move, const planner::Ramp& ramp);
+void dwell(uint32_t ms);
+// Switches every coil and driver off (at rest); the next block energises
+// its axes again.
+void release();
+void start();
+void drain();
+void pump();
+bool idle();
+uint16_t starved();
+
+}  // namespace path

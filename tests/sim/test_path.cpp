@@ -1,0 +1,176 @@
+// The G-code path on the real m32 image (firmware/engine/path.h): a polyline
+// runs through its vertices, every event of every block falls within half
+// an event of the ideal constant-acceleration motion of its planned profile,
+// and every axis ends on its rounded target.
+//
+// The plan is replayed on the host with the same look-ahead core
+// (core/motion/path_planner.h): the lines here reach the board faster than
+// the motion runs, so the firmware takes each block with its ring full (or
+// with every remaining block at the end), and the host does the same. The
+// ideal motion of a planned block is written out below in closed form,
+// independently of the chip's profile generator (core/motion/trapezoid.h).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "../../core/motion/path_planner.h"
+#include "sim_fixture.h"
+
+namespace {
+
+constexpr double kTick = 16000000.0;  // the m32's step timer
+constexpr uint8_t kAxes = 4;          // X Y Z E
+constexpr uint8_t kRing = 6;          // board::kPathBlocks
+constexpr double kStepsPerMm = 1000.0;
+
+using Block = am::PathBlock<kAxes>;
+
+// The m32's axis table as firmware/engine/path.cpp builds it.
+const am::PathAxis kTable[kAxes] = {
+    {1.0f, 40000.0f, 20000.0f, true},  {1.0f, 40000.0f, 20000.0f, true}, {1.0f, 40000.0f, 20000.0f, true},
+    {1.0f, 40000.0f, 20000.0f, false}};
+
+struct Line {
+  std::string text;
+  int32_t steps[kAxes];
+  float delta_mm[kAxes];
+  float feed;
+};
+
+// XY moves in 1/10000 mm, absolute, all at one feed (mm/min).
+std::vector<Line> polyline(const std::vector<std::pair<int32_t, int32_t>>& points, int feed) {
+  std::vector<Line> out;
+  int32_t x = 0, y = 0;
+  for (const auto& p : points) {
+    Line l{};
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "G1 X%.4f Y%.4f F%d", p.first / 10000.0, p.second / 10000.0, feed);
+    l.text = buf;
+    // 1000 steps/mm: a coordinate of 1/10000 mm rounds to steps (half away from zero).
+    auto steps = [](int32_t c) { return c < 0 ? -((-c + 5) / 10) : (c + 5) / 10; };
+    l.steps[0] = steps(p.first) - steps(x);
+    l.steps[1] = steps(p.second) - steps(y);
+    l.delta_mm[0] = float(p.first - x) * 1e-4f;
+    l.delta_mm[1] = float(p.second - y) * 1e-4f;
+    l.feed = float(feed * 10000) * 1e-4f;
+    x = p.first;
+    y = p.second;
+    out.push_back(l);
+  }
+  return out;
+}
+
+// The blocks in the order the firmware takes them, each as planned then.
+std::vector<Block> replay(const std::vector<Line>& lines) {
+  static am::PathPlanner<kAxes, kRing> plan(kTable, 0.01f, 40000.0f);
+  plan.clear();
+  std::vector<Block> taken;
+  auto take = [&] {
+    taken.push_back(*plan.take());
+    plan.done();
+  };
+  for (const Line& l : lines) {
+    using Plan = am::PathPlanner<kAxes, kRing>;
+    EXPECT_EQ(plan.add(l.steps, l.delta_mm, l.feed, false), Plan::Status::queued);
+    if (plan.full()) take();
+  }
+  while (!plan.empty()) take();
+  return taken;
+}
+
+// Ideal motion of one block: x(t) in events, t in seconds from its start.
+struct Ideal {
+  double v0, vp, v1, a, da, dc, t1, t2, T, n;
+
+  explicit Ideal(const Block& b) : a(b.accel), n(b.events) {
+    const double vc = kTick / std::ceil(kTick / double(b.cruise));  // whole-tick cruise
+    v0 = std::min<double>(b.entry, vc);
+    v1 = std::min<double>(b.exit, vc);
+    if (v0 * v0 > v1 * v1 + 2 * a * n) v1 = std::sqrt(v0 * v0 - 2 * a * n);
+    if (v1 * v1 > v0 * v0 + 2 * a * n) v1 = std::sqrt(v0 * v0 + 2 * a * n);
+    vp = std::min(vc, std::sqrt(a * n + (v0 * v0 + v1 * v1) / 2));
+    vp = std::max(vp, std::max(v0, v1));
+    da = (vp * vp - v0 * v0) / (2 * a);
+    dc = std::max(0.0, n - da - (vp * vp - v1 * v1) / (2 * a));
+    t1 = (vp - v0) / a;
+    t2 = t1 + dc / vp;
+    T = t2 + (vp - v1) / a;
+  }
+  double x(double t) const {
+    if (t <= t1) return v0 * t + a * t * t / 2;
+    if (t <= t2) return da + vp * (t - t1);
+    if (t <= T) {
+      const double u = t - t2;
+      return da + dc + vp * u - a * u * u / 2;
+    }
+    return n + v1 * (t - T);
+  }
+};
+
+int dominant(const Block& b) {
+  int d = 0;
+  for (int i = 1; i < kAxes; ++i)
+    if (std::abs(b.steps[i]) > std::abs(b.steps[d])) d = i;
+  return d;
+}
+
+struct Check {
+  double worst = 0;      // |e - x(t_e)|, events
+  double min_vertex = 1e9;  // slowest inner vertex: events/s of the block after it, from its first interval
+};
+
+// Walks the recorded steps block by block: every event against its block's
+// ideal motion, anchored at the previous block's last event (the first
+// block at its own first event).
+Check check_blocks(const sim::Machine& m, const std::vector<Block>& blocks, double slack_cycles) {
+  Check c;
+  const char names[kAxes] = {'X', 'Y', 'Z', 'E'};
+  size_t used[kAxes] = {};
+  double anchor = -1;
+  for (size_t k = 0; k < blocks.size(); ++k) {
+    const Block& b = blocks[k];
+    const int d = dominant(b);
+    const std::vector<uint64_t>& st = m.axis(names[d])->step_cycles;
+    EXPECT_GE(st.size(), used[d] + b.events);
+    if (st.size() < used[d] + b.events) return c;
+    const Ideal ideal(b);
+    // The first block starts from rest: its first event is sqrt(2 / a) in.
+    if (anchor < 0) anchor = double(st[used[d]]) - std::sqrt(2.0 / ideal.a) * kTick;
+    // The speed through the vertex, from the edges: the first interval.
+    if (k > 0 && k + 1 < blocks.size()) c.min_vertex = std::min(c.min_vertex, kTick / (double(st[used[d]]) - anchor));
+    for (uint32_t e = 1; e <= b.events; ++e) {
+      const double t = (double(st[used[d] + e - 1]) - anchor) / kTick;
+      // The edges' latency spread, in events at the block's top speed.
+      const double err = std::fabs(double(e) - ideal.x(t)) - slack_cycles / kTick * ideal.vp;
+      c.worst = std::max(c.worst, err);
+    }
+    anchor = double(st[used[d] + b.events - 1]);
+    for (int i = 0; i < kAxes; ++i) used[i] += size_t(std::abs(b.steps[i]));
+  }
+  return c;
+}
+
+}  // namespace
+
+TEST(Path, APolylineRunsThroughItsVerticesOnItsExactProfile) {
+  // A 60-gon of radius 4.8 mm (0.5 mm chords) at 600 mm/min.
+  std::vector<std::pair<int32_t, int32_t>> pts;
+  for (int k = 1; k <= 60; ++k) {
+    const double a = 2 * M_PI * k / 60;
+    pts.push_back({int32_t(std::lround(48000 * std::cos(a) - 48000)), int32_t(std::lround(48000 * std::sin(a)))});
+  }
+  const std::vector<Line> lines = polyline(pts, 600);
+  std::vector<std::string> text;
+  for (const Line& l : lines) text.push_back(l.text);
+  auto m = simtest::run("m32", text, 30);
+  const std::vector<Block> blocks = replay(lines);
+  ASSERT_EQ(blocks.size(), lines.size());
+  const Check c = check_blocks(*m, blocks, 48);
+  std::printf("worst event error %.3f, slowest inner vertex %.0f events/s\n", c.worst, c.min_vertex);
+  EXPECT_LE(c.worst, 0.5);
+  EXPECT_GT(c.min_vertex, 1000.0);
+  EXPECT_EQ(m->axis('X')->steps(), 0.0);
+  EXPECT_EQ(m->axis('Y')->steps(), 0.0);
+}
