@@ -37,7 +37,7 @@ constexpr uint32_t kMaxStepRate = 40000;
 constexpr bool kGcode = true;  // the cnc program speaks G-code (docs/gcode.md)
 constexpr uint8_t kPathBlocks = 6;  // look-ahead ring of G-code blocks (firmware/engine/path.h); RAM: the stack needs 380 B
 constexpr uint32_t kDefaultRate = 4000;    // steps/s (4 mm/s)
-constexpr uint32_t kDefaultAccel = 20000;  // steps/s^2
+constexpr uint32_t kDefaultAccel = 500000;  // steps/s^2 (500 mm/s^2)
 // Fastest ramp the planner keeps ahead of, with any axis at 40 kHz
 // (tests/sim/test_invariants.cpp; docs/step-engine.md).
 constexpr uint32_t kMaxAccel = 800000;  // steps/s^2
