@@ -42,29 +42,33 @@ am::BoardDescriptor read_board_descriptor(const std::string& elf_path) {
   return out;
 }
 
-uint16_t read_data_symbol(const std::string& elf_path, const std::string& mangled_name) {
-  if (elf_version(EV_CURRENT) == EV_NONE) throw std::runtime_error("libelf initialisation failed");
+ElfSymbol find_symbol(const std::string& elf_path, const std::string& mangled_name) {
+  ElfSymbol out;
+  if (elf_version(EV_CURRENT) == EV_NONE) return out;
   const int fd = open(elf_path.c_str(), O_RDONLY);
-  if (fd < 0) throw std::runtime_error("cannot open " + elf_path);
+  if (fd < 0) return out;
   Elf* elf = elf_begin(fd, ELF_C_READ, nullptr);
-  long found = -1;
-  for (Elf_Scn* scn = elf ? elf_nextscn(elf, nullptr) : nullptr; scn && found < 0; scn = elf_nextscn(elf, scn)) {
+  for (Elf_Scn* scn = elf ? elf_nextscn(elf, nullptr) : nullptr; scn && !out.found; scn = elf_nextscn(elf, scn)) {
     GElf_Shdr shdr;
     if (!gelf_getshdr(scn, &shdr) || shdr.sh_type != SHT_SYMTAB) continue;
     Elf_Data* data = elf_getdata(scn, nullptr);
     const size_t count = shdr.sh_entsize ? shdr.sh_size / shdr.sh_entsize : 0;
-    for (size_t i = 0; data && i < count; ++i) {
+    for (size_t i = 0; data && i < count && !out.found; ++i) {
       GElf_Sym sym;
       if (!gelf_getsym(data, int(i), &sym)) continue;
       const char* name = elf_strptr(elf, shdr.sh_link, sym.st_name);
-      // AVR data addresses carry the 0x800000 data-space offset.
-      if (name && mangled_name == name) found = long(sym.st_value & 0xFFFF);
+      if (name && mangled_name == name) out = ElfSymbol{uint32_t(sym.st_value), uint32_t(sym.st_size), true};
     }
   }
   if (elf) elf_end(elf);
   close(fd);
-  if (found < 0) throw std::runtime_error(elf_path + ": no symbol " + mangled_name);
-  return uint16_t(found);
+  return out;
+}
+
+uint16_t read_data_symbol(const std::string& elf_path, const std::string& mangled_name) {
+  const ElfSymbol s = find_symbol(elf_path, mangled_name);
+  if (!s.found) throw std::runtime_error(elf_path + ": no symbol " + mangled_name);
+  return uint16_t(s.value & 0xFFFF);  // the data-space offset off
 }
 
 }  // namespace sim

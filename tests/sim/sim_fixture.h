@@ -44,6 +44,27 @@ inline std::string slurp(const std::string& path) {
 
 inline bool exists(const std::string& path) { return std::ifstream(path).good(); }
 
+// A PWM output's edges: the cycles of its rises, and its high times.
+struct PwmTrace {
+  std::vector<uint64_t> rises;
+  uint64_t high_total = 0;  // cycles high, over `highs` completed pulses
+  size_t highs = 0;
+};
+inline PwmTrace pwm_trace(const std::vector<sim::PinEdge>& edges) {
+  PwmTrace t;
+  uint64_t last_rise = 0;
+  for (const sim::PinEdge& e : edges) {
+    if (e.level) {
+      t.rises.push_back(e.cycle);
+      last_rise = e.cycle;
+    } else if (last_rise) {
+      t.high_total += e.cycle - last_rise;
+      ++t.highs;
+    }
+  }
+  return t;
+}
+
 inline std::vector<uint64_t> intervals(const std::vector<uint64_t>& stamps) {
   std::vector<uint64_t> out;
   for (size_t i = 1; i < stamps.size(); ++i) out.push_back(stamps[i] - stamps[i - 1]);

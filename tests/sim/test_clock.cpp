@@ -16,13 +16,9 @@
 //     instruction after SEI), how much later that makes a software step
 //     edge, its flash and RAM. Printed, and bounded.
 #include <avr_ioport.h>
-#include <fcntl.h>
-#include <gelf.h>
-#include <libelf.h>
 #include <sim_avr.h>
 #include <sim_interrupts.h>
 #include <sim_irq.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -67,36 +63,6 @@ Vectors vectors_of(const std::string& mcu) {
 }
 
 // A symbol's value and size from the image's symbol table.
-struct Symbol {
-  uint32_t value = 0, size = 0;
-  bool found = false;
-};
-Symbol elf_symbol(const std::string& path, const std::string& name) {
-  Symbol out;
-  if (elf_version(EV_CURRENT) == EV_NONE) return out;
-  const int fd = open(path.c_str(), O_RDONLY);
-  if (fd < 0) return out;
-  Elf* elf = elf_begin(fd, ELF_C_READ, nullptr);
-  for (Elf_Scn* scn = elf ? elf_nextscn(elf, nullptr) : nullptr; scn; scn = elf_nextscn(elf, scn)) {
-    GElf_Shdr shdr;
-    if (!gelf_getshdr(scn, &shdr) || shdr.sh_type != SHT_SYMTAB) continue;
-    Elf_Data* data = elf_getdata(scn, nullptr);
-    const size_t count = shdr.sh_entsize ? shdr.sh_size / shdr.sh_entsize : 0;
-    for (size_t i = 0; data && i < count; ++i) {
-      GElf_Sym sym;
-      if (!gelf_getsym(data, int(i), &sym)) continue;
-      const char* n = elf_strptr(elf, shdr.sh_link, sym.st_name);
-      if (n && name == n) {
-        out.value = uint32_t(sym.st_value);
-        out.size = uint32_t(sym.st_size);
-        out.found = true;
-      }
-    }
-  }
-  if (elf) elf_end(elf);
-  close(fd);
-  return out;
-}
 
 // Watches the clock's and the step engine's vectors through simavr's
 // interrupt IRQs: when TOV0 was set (the wrap), when each vector was entered
@@ -258,7 +224,7 @@ NowCall call_now(sim::Machine& m, uint32_t now_byte_address, bool interrupts_off
 }
 
 uint32_t now_address(const std::string& elf) {
-  const Symbol s = elf_symbol(elf, "_ZN5clock3nowEv");
+  const sim::ElfSymbol s = sim::find_symbol(elf, "_ZN5clock3nowEv");
   EXPECT_TRUE(s.found) << elf << " carries no clock::now()";
   return s.value;
 }
@@ -457,18 +423,10 @@ TEST(Clock, UnoTimer0StillDrivesStepper2sPwmAtItsNewRate) {
   m.run([&] { return m.cycles() >= until; }, 2048 * 80);
   for (size_t k = 0; k < logs.size(); ++k) {
     SCOPED_TRACE(testing::Message() << "pin P" << pins[k].port << int(pins[k].bit));
-    std::vector<uint64_t> rises;
-    uint64_t high_total = 0, last_rise = 0;
-    size_t highs = 0;
-    for (const sim::PinEdge& e : *logs[k]) {
-      if (e.level) {
-        rises.push_back(e.cycle);
-        last_rise = e.cycle;
-      } else if (last_rise) {
-        high_total += e.cycle - last_rise;
-        ++highs;
-      }
-    }
+    const simtest::PwmTrace t = simtest::pwm_trace(*logs[k]);
+    const std::vector<uint64_t>& rises = t.rises;
+    const uint64_t high_total = t.high_total;
+    const size_t highs = t.highs;
     ASSERT_GE(rises.size(), 50u);
     const double mean = double(rises.back() - rises.front()) / double(rises.size() - 1);
     EXPECT_DOUBLE_EQ(mean, double(pins[k].period));
@@ -590,10 +548,10 @@ TEST(Clock, FlashAndRamPerImage) {
   for (const ImageCase& c : kImages) {
     const std::string elf = simtest::image(c.image);
     const Vectors v = vectors_of(sim::read_board_descriptor(elf).mcu);
-    const Symbol vec = elf_symbol(elf, "__vector_" + std::to_string(v.clock));
-    const Symbol now = elf_symbol(elf, "_ZN5clock3nowEv");
-    const Symbol init = elf_symbol(elf, "_ZN5clock4initEv");
-    const Symbol high = elf_symbol(elf, "clock_high");
+    const sim::ElfSymbol vec = sim::find_symbol(elf, "__vector_" + std::to_string(v.clock));
+    const sim::ElfSymbol now = sim::find_symbol(elf, "_ZN5clock3nowEv");
+    const sim::ElfSymbol init = sim::find_symbol(elf, "_ZN5clock4initEv");
+    const sim::ElfSymbol high = sim::find_symbol(elf, "clock_high");
     ASSERT_TRUE(vec.found && now.found && high.found) << c.image;
     // init() may be inlined into main().
     std::printf("%s: clock flash %u B (vector %u, now() %u, init() %s), RAM %u B\n", c.image,
@@ -603,7 +561,7 @@ TEST(Clock, FlashAndRamPerImage) {
     EXPECT_LE(vec.size + now.size + init.size, 160u);
   }
   const std::string driver = simtest::image("m32-driver");
-  EXPECT_FALSE(elf_symbol(driver, "clock_high").found);
-  EXPECT_FALSE(elf_symbol(driver, "_ZN5clock3nowEv").found);
+  EXPECT_FALSE(sim::find_symbol(driver, "clock_high").found);
+  EXPECT_FALSE(sim::find_symbol(driver, "_ZN5clock3nowEv").found);
 }
 

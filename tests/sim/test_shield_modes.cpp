@@ -262,18 +262,10 @@ TEST(ShieldModes, PwmRunsAt62500HzOnStepper1And7812HzOnStepper2) {
   for (size_t k = 0; k < logs.size(); ++k) {
     const double ticks = k < 2 ? 1.0 : 8.0;  // cycles per timer tick
     const double hz = 16e6 / ticks / 256;
-    std::vector<uint64_t> rises;
-    uint64_t high_total = 0, last_rise = 0;
-    int highs = 0;
-    for (const auto& e : *logs[k]) {
-      if (e.level) {
-        rises.push_back(e.cycle);
-        last_rise = e.cycle;
-      } else if (last_rise) {
-        high_total += e.cycle - last_rise;
-        ++highs;
-      }
-    }
+    const simtest::PwmTrace t = simtest::pwm_trace(*logs[k]);
+    const std::vector<uint64_t>& rises = t.rises;
+    const uint64_t high_total = t.high_total;
+    const int highs = int(t.highs);
     ASSERT_GE(rises.size(), 90u) << "pin " << k;
     // simavr delivers timer events at instruction boundaries: single periods
     // jitter by a few cycles, the mean is exact.
