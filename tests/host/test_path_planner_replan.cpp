@@ -51,13 +51,13 @@ struct Input {
 // The planner's own float length and events per mm, as the contract defines
 // them (the path axes' norm, or the others', or from steps), to check the
 // hand-over x * (k_next / k) bit for bit.
-float per_mm_float(const Input& in, uint32_t events) {
+float per_mm_float(const Input& in, uint32_t events, const am::PathAxis (&axes)[4] = kAxes) {
   bool given = false;
   for (float v : in.mm) given |= v != 0;
   float path = 0, other = 0;
   for (int i = 0; i < 4; ++i) {
-    const float m = given ? in.mm[i] : float(in.steps[i]) / kAxes[i].steps_per_mm;
-    (kAxes[i].in_path ? path : other) += m * m;
+    const float m = given ? in.mm[i] : float(in.steps[i]) / axes[i].steps_per_mm;
+    (axes[i].in_path ? path : other) += m * m;
   }
   return float(events) / std::sqrt(path > 0 ? path : other);
 }
@@ -473,16 +473,7 @@ TEST(PathReplan, ExtremeInputsStayFeasible) {
     using P = am::PathPlanner<4, 8>;
     P p(axes, float(logu(1e-4, 1.0)), float(logu(100, 1e6)));
     // The planner's float events per mm of an input, with these axes.
-    auto per_mm = [&](const Input& in, uint32_t events) {
-      bool given = false;
-      for (float v : in.mm) given |= v != 0;
-      float path = 0, other = 0;
-      for (int i = 0; i < 4; ++i) {
-        const float m = given ? in.mm[i] : float(in.steps[i]) / axes[i].steps_per_mm;
-        (axes[i].in_path ? path : other) += m * m;
-      }
-      return float(events) / std::sqrt(path > 0 ? path : other);
-    };
+    auto per_mm = [&](const Input& in, uint32_t events) { return per_mm_float(in, events, axes); };
     std::deque<Input> queued;
     am::PathBlock<4> prev{};
     float prev_per_mm = 0;
