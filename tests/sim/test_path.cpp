@@ -1,7 +1,8 @@
 // The G-code path on the real m32 image (firmware/engine/path.h): a polyline
 // runs through its vertices, every event of every block falls within half
 // an event of the ideal constant-acceleration motion of its planned profile,
-// and every axis ends on its rounded target.
+// and every axis ends on its rounded target; and what a line costs to parse
+// and plan, and how many blocks a second one line in flight delivers.
 //
 // The plan is replayed on the host with the same look-ahead core
 // (core/motion/path_planner.h): the lines here reach the board faster than
@@ -205,4 +206,47 @@ TEST(Path, ShortChordsStreamWithoutStoppingAtAVertex) {
   // A stop would start its next block from rest: sqrt(a / 2) = 500 events/s
   // for its first interval.
   EXPECT_GT(c.min_vertex, 2000.0);
+}
+
+TEST(Path, ParseAndPlanCyclesPerSlicerLine) {
+  // Five lines of a slicer's kind on an idle m32 (the ring of 6 never fills,
+  // the first block waits for its start): the time from a line's first byte
+  // to its answer, less the bytes' own time on the wire (the line, its end,
+  // and "ok\n"), is what the firmware spends parsing and planning it.
+  const std::vector<std::string> lines = {"G1 X110.956 Y98.211 E2.0151 F1800", "G1 X111.402 Y98.705 E2.0372",
+                                          "G1 X111.953 Y99.012 E2.0593", "G1 X112.361 Y99.668 E2.0814",
+                                          "G1 X112.617 Y100.150 E2.1035"};
+  auto m = simtest::run("m32", lines, 30);
+  const std::vector<sim::Response>& r = m->serial().responses();
+  ASSERT_EQ(r.size(), lines.size());
+  const double byte_cycles = 10.0 * m->f_cpu() / 115200;
+  std::vector<double> cycles;
+  for (const sim::Response& x : r) {
+    ASSERT_EQ(x.answer, "ok") << x.line;
+    cycles.push_back(double(x.answer_cycle - x.sent_cycle) - (x.line.size() + 4) * byte_cycles);
+  }
+  std::sort(cycles.begin(), cycles.end());
+  std::printf("parse + plan of a slicer line: %.0f cycles (median of %zu; %.0f..%.0f), %.0f lines/s of CPU\n",
+              cycles[cycles.size() / 2], cycles.size(), cycles.front(), cycles.back(),
+              m->f_cpu() / cycles[cycles.size() / 2]);
+  EXPECT_GT(cycles.front(), 0.0);
+  // The motion afterwards: X to 112.617 mm at 1000 steps/mm.
+  EXPECT_EQ(m->axis('X')->steps(), 112617.0);
+}
+
+TEST(Path, AFeedBeyondTheStreamRunsAtTheStreamsPace) {
+  // The same 0.1 mm chords at 2400 mm/min need 400 blocks/s: more than one
+  // line in flight at 115200 baud delivers with the motion running. The
+  // look-ahead runs dry and the path slows to what arrives; every step is
+  // still made and the circle closes.
+  std::vector<std::string> text;
+  for (const Line& l : polyline(circle(314, 50000), 2400)) text.push_back(l.text);
+  auto m = simtest::run("m32", text, 60);
+  const auto& x = m->axis('X')->step_cycles;
+  ASSERT_FALSE(x.empty());
+  const double motion_s = double(x.back() - x.front()) / kTick;
+  std::printf("0.1 mm chords asked at 400 blocks/s: %.0f blocks/s\n", 314 / motion_s);
+  EXPECT_TRUE(m->serial().errors().empty());
+  EXPECT_EQ(m->axis('X')->steps(), 0.0);
+  EXPECT_EQ(m->axis('Y')->steps(), 0.0);
 }
