@@ -68,7 +68,8 @@
 //             cruise rises with it if it must (by a unit in the last place).
 //     done()  the oldest taken block has run: dropped.
 //   count() includes taken blocks; clear() forgets everything.
-//   set_steps_per_mm(i, v): axis i's steps per mm changed (a coil axis's
+//   newest_nominal() is the newest block's nominal speed, mm/s (its feed as
+//   the limits hold it). set_steps_per_mm(i, v): axis i's steps per mm changed (a coil axis's
 //   excitation mode, at rest); only lengths derived from steps and the
 //   junction's acceleration use it.
 //
@@ -165,6 +166,10 @@ class PathPlanner {
 
   // An axis's steps per mm changed (an excitation mode, at rest).
   void set_steps_per_mm(uint8_t axis, float steps_per_mm) { axes_[axis].steps_per_mm = steps_per_mm; }
+
+  // The newest block's nominal speed along its path, mm/s: its feed as the
+  // axes' limits hold it.
+  float newest_nominal() const { return nominal_; }
 
   bool full() const { return count_ == Size; }
   bool empty() const { return count_ == 0; }

@@ -121,8 +121,8 @@ bool queue_dwell() {
 
 Added add(const planner::Move& move, const float (&delta_mm)[kAxes], float feed_mm_per_min, bool rapid) {
   if (direct_waiting || dwell_ms || plan().full()) return Added::full;
-  set_steps_per_mm();
   const bool at_rest = idle() && !engine::busy();
+  if (at_rest) set_steps_per_mm();  // modes change only at rest
   switch (plan().add(move.steps, delta_mm, feed_mm_per_min, rapid)) {
     case Plan::Status::bad_feed: return Added::bad_feed;
     case Plan::Status::full: return Added::full;
@@ -139,6 +139,8 @@ Added add(const planner::Move& move, const float (&delta_mm)[kAxes], float feed_
   planner::count(move, at_rest);
   return Added::queued;
 }
+
+float held_feed() { return plan().newest_nominal() * 60; }
 
 bool ready_for(const planner::Move& move) {
   if (!idle()) return false;

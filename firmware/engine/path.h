@@ -11,7 +11,8 @@
 //   checked with planner::check() first), the program coordinates' change in
 //   mm (the path's length and direction), the feed in mm/min, rapid for G0.
 //   It answers full (nothing changed: call again) while the ring is full or
-//   a direct move or dwell waits to be queued.
+//   a direct move or dwell waits to be queued. held_feed() then says how
+//   fast the block will really run.
 //   ready_for(move) says whether a direct move may be queued now: the path
 //   is idle, and the engine is at rest or runs the same axes (energising
 //   other axes under a running move could hold the step interrupt off).
@@ -49,6 +50,9 @@ constexpr uint16_t kStartDelayMs = 50;
 
 enum class Added : uint8_t { queued, full, bad_feed };
 Added add(const planner::Move& move, const float (&delta_mm)[board::Axes::count], float feed_mm_per_min, bool rapid);
+// The feed the last queued block runs at, mm/min: its F as the axes' limits
+// hold it (lower than asked: the caller says so).
+float held_feed();
 bool ready_for(const planner::Move& move);
 void add_direct(const planner::Move& move, const planner::Ramp& ramp);
 void dwell(uint32_t ms);

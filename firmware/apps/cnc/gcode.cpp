@@ -1,7 +1,6 @@
 #include "gcode.h"
 
 #include <avr/pgmspace.h>
-#include <math.h>
 
 #define AM_TEXT(s) PSTR(s)
 #include "../../../core/text/gcode_interpreter.h"
@@ -98,25 +97,6 @@ planner::Move move_of_action() {
   return m;
 }
 
-// A feed beyond what the axes can do runs at what they can (the planner
-// holds the block to its limiting axis, as planner::clamp() does a direct
-// move): said before the block moves.
-void warn_if_clamped(const planner::Move& m, const float (&delta_mm)[kAxes]) {
-  float path = 0, other = 0;
-  for (uint8_t i = 0; i < kAxes; ++i) (board::Axes::name_at(i) == 'E' ? other : path) += delta_mm[i] * delta_mm[i];
-  const float length = sqrtf(path > 0 ? path : other);
-  if (!(length > 0)) return;
-  const float per_mm = float(planner::dominant_count(m)) / length;
-  const float rate = float(action.feed) * (1e-4f / 60) * per_mm;
-  planner::Ramp ramp{rate < 4e9f ? uint32_t(rate) + 1 : 0xFFFFFFFFul, board::kDefaultAccel};
-  if (!(planner::clamp(m, ramp) & planner::kClampedRate)) return;
-  char buf[14];
-  am::format_fixed(buf, int32_t(float(ramp.rate) * 60 / per_mm), 0);
-  hal::uart::write_P(PSTR("warning: F clamped to "));
-  hal::uart::write(buf);
-  hal::uart::write_P(PSTR(" mm/min\n"));
-}
-
 // A G0/G1 (accept() has checked it): one block into the look-ahead ring,
 // its length and direction from the program coordinates.
 bool move() {
@@ -128,7 +108,16 @@ bool move() {
   for (uint8_t i = 0; i < kAxes; ++i) delta_mm[i] = float(action.coord[i] - coord_before[i]) * 1e-4f;
   // bad_feed cannot come back: the interpreter refuses F <= 0 on a G1.
   if (path::add(m, delta_mm, float(action.feed) * 1e-4f, action.rapid) == path::Added::full) return false;
-  if (!action.rapid) warn_if_clamped(m, delta_mm);
+  // A feed beyond what the axes can do runs at what they can: said before
+  // the block moves.
+  const float asked = float(action.feed) * 1e-4f, held = path::held_feed();
+  if (!action.rapid && held < asked * 0.9999f) {
+    char buf[14];
+    am::format_fixed(buf, int32_t(held + 0.5f), 0);
+    hal::uart::write_P(PSTR("warning: F clamped to "));
+    hal::uart::write(buf);
+    hal::uart::write_P(PSTR(" mm/min\n"));
+  }
   return true;
 }
 
