@@ -78,7 +78,9 @@ struct Machine::PinHook {
   std::vector<std::function<void(bool, uint64_t)>> listeners;
 };
 
-Machine::Machine(const std::string& elf_path) : board_(read_board_descriptor(elf_path)) {
+Machine::Machine(const std::string& elf_path)
+    : board_(read_board_descriptor(elf_path)),
+      starvations_(find_symbol(elf_path, "_ZN4path12_GLOBAL__N_111starvationsE")) {
   avr_global_logger_set(&Machine::on_simavr_log);
   elf_firmware_t fw;
   std::memset(&fw, 0, sizeof fw);
@@ -280,6 +282,12 @@ unsigned Machine::stack_bytes() const {
     if (avr_->data[a] != kPaint) return unsigned(avr_->ramend - a + 1);
   }
   return 0;
+}
+
+int Machine::starvations() const {
+  if (!starvations_.found) return -1;
+  const uint16_t at = uint16_t(starvations_.value & 0xFFFF);  // the data-space offset off
+  return avr_->data[at] | avr_->data[at + 1] << 8;
 }
 
 const std::vector<PinEdge>& Machine::watch_pin(char port, uint8_t bit) {

@@ -32,6 +32,7 @@
 
 #include "../core/board/descriptor.h"
 #include "axis_decoder.h"
+#include "board_info.h"
 #include "serial_host.h"
 
 struct avr_t;
@@ -93,6 +94,10 @@ class Machine {
 
   const std::map<int, IsrStats>& isr_stats() const { return isr_; }
   unsigned stack_bytes() const;
+  // The firmware's count of path starvations (firmware/engine/path.h): the
+  // engine ran dry under a block that had more to queue or ended at speed.
+  // -1 for an image without a path.
+  int starvations() const;
 
   // Starts recording every change of a pin (port 'A'..'D', bit 0..7).
   const std::vector<PinEdge>& watch_pin(char port, uint8_t bit);
@@ -134,6 +139,7 @@ class Machine {
   static void on_isr_irq(avr_irq_t* irq, uint32_t value, void* param);
 
   am::BoardDescriptor board_;
+  ElfSymbol starvations_;  // firmware/engine/path.cpp's counter
   avr_t* avr_ = nullptr;
   std::unique_ptr<SerialHost> serial_;
   std::vector<AxisTrace> axes_;

@@ -110,7 +110,8 @@ void write_report(std::ostream& out, Machine& m, RunEnd end) {
     first = false;
   }
   out << "\n  },\n";
-  out << "  \"stack_bytes\": " << m.stack_bytes() << "\n";
+  out << "  \"stack_bytes\": " << m.stack_bytes() << ",\n";
+  out << "  \"starvations\": " << m.starvations() << "\n";
   out << "}\n";
 }
 

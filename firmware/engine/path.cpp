@@ -61,7 +61,7 @@ bool starting, draining;
 uint32_t last_add;     // clock tick of the last G-code block
 bool engine_was_busy;  // at the end of the last pump()
 bool exit_moving;      // the last block ends at speed: the next must follow at once
-uint16_t starvations;
+uint16_t starvations;  // see path.h; read by the simulator (sim/report.cpp)
 
 void set_steps_per_mm() {
   for (uint8_t i = 0; i < kAxes; ++i) {
@@ -71,11 +71,12 @@ void set_steps_per_mm() {
 }
 
 bool take_now() {
-  if (plan().full() || draining) return true;
+  // A block that ends at speed has its successor in the ring, and the engine
+  // must never run dry between them (that would stop the axes dead): it is
+  // taken as soon as the one before is queued, whatever the parser does next.
+  if (plan().full() || draining || exit_moving) return true;
   if (engine::busy()) return engine::queued() <= kLowWater;
-  // At rest: at once if the last block ended at speed (the engine ran dry
-  // under it), else on the start rule.
-  return exit_moving || (starting && clock::reached(last_add + clock::ms(kStartDelayMs)));
+  return starting && clock::reached(last_add + clock::ms(kStartDelayMs));
 }
 
 void begin(const am::TrapezoidBlock& b, const int32_t (&steps)[kAxes], uint8_t mask, uint8_t dirs) {
@@ -198,7 +199,5 @@ void pump() {
 }
 
 bool idle() { return !generating && !direct_waiting && dwell_ms == 0 && ring_empty(); }
-
-uint16_t starved() { return starvations; }
 
 }  // namespace path

@@ -29,8 +29,9 @@
 //   the queue takes them. drain() makes pump() take every block now (a
 //   command that waits for the motion to end calls it). idle() is true when
 //   every block has been handed to the engine.
-//   starved() counts the times the engine ran dry while a block still had
-//   segments to queue or ended at speed (the planner fell behind the motion).
+//   `starvations` (in path.cpp; the simulator's report reads it) counts the
+//   times the engine ran dry while a block still had segments to queue or
+//   ended at speed: the path fell behind the motion.
 //
 // Why
 //   A taken block is fixed (its exit speed is the next block's entry), so
@@ -63,6 +64,5 @@ void start();
 void drain();
 void pump();
 bool idle();
-uint16_t starved();
 
 }  // namespace path
