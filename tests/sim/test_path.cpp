@@ -258,3 +258,35 @@ TEST(Path, AFeedBeyondTheStreamRunsAtTheStreamsPace) {
   EXPECT_EQ(m->axis('X')->steps(), 0.0);
   EXPECT_EQ(m->axis('Y')->steps(), 0.0);
 }
+
+TEST(Path, MinorAxesStepOnTheDominantAxisEventsWithoutSmoothing) {
+  // No AMASS yet: at a low rate a minor axis steps only on the dominant
+  // axis's events, so its intervals are whole dominant intervals. G1 X1
+  // Y0.7 at 12 mm/min: X at about 160 steps/s, Y at 115. Measured: how late
+  // each Y step comes after the straight line's Y crosses its rounding point
+  // (k - 1/2 for step k), in dominant intervals: under one, by Bresenham.
+  auto m = simtest::run("m32", {"G1 X1 Y0.7 F12"}, 30);
+  const auto& x = m->axis('X')->step_cycles;
+  const auto& y = m->axis('Y')->step_cycles;
+  ASSERT_EQ(x.size(), 1000u);
+  ASSERT_EQ(y.size(), 700u);
+  // The cruise: X steps 200..800, every interval the same.
+  const double dominant = double(x[800] - x[200]) / 600;
+  double worst = 0;
+  uint64_t shortest = ~0ull, longest = 0;
+  for (size_t k = 150; k < 550; ++k) {
+    // Y's step k + 1 is due where the line's Y is k + 1/2: X event
+    // (k + 1/2) * 1000 / 700, X's event e being x[e - 1].
+    const double due = double(x[200]) + ((k + 0.5) * 1000.0 / 700.0 - 201) * dominant;
+    worst = std::max(worst, (double(y[k]) - due) / dominant);
+    shortest = std::min(shortest, y[k + 1] - y[k]);
+    longest = std::max(longest, y[k + 1] - y[k]);
+  }
+  std::printf("minor axis at %.0f steps/s on a dominant at %.0f: up to %.2f dominant intervals behind the line; "
+              "intervals %.1f..%.1f ms (the line's: %.2f)\n",
+              16e6 / dominant * 0.7, 16e6 / dominant, worst, shortest / 16000.0, longest / 16000.0,
+              dominant / 0.7 / 16000.0);
+  EXPECT_LT(worst, 1.01);
+  EXPECT_EQ(m->axis('X')->steps(), 1000.0);
+  EXPECT_EQ(m->axis('Y')->steps(), 700.0);
+}
