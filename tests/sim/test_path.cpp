@@ -290,3 +290,41 @@ TEST(Path, MinorAxesStepOnTheDominantAxisEventsWithoutSmoothing) {
   EXPECT_EQ(m->axis('X')->steps(), 1000.0);
   EXPECT_EQ(m->axis('Y')->steps(), 700.0);
 }
+
+TEST(Path, DirectionsFlipAtSpeedWithTheDriversSetUpTime) {
+  // A zig-zag: X runs on while Y reverses at every vertex, at the junction
+  // speed (a 23 degree turn), so Y's DIR line changes with the machine
+  // moving. Every Y step must follow its DIR change by a DRV8825's 650 ns,
+  // no step of either axis may come faster than the board's 40 kHz (less
+  // the software edges' spread of 48 cycles), and the path ends on its
+  // target.
+  std::vector<std::pair<int32_t, int32_t>> pts;
+  for (int k = 1; k <= 40; ++k) pts.push_back({k * 10000, (k % 2) * 2000});
+  std::vector<std::string> text;
+  for (const Line& l : polyline(pts, 2400)) text.push_back(l.text);
+  sim::Machine m(simtest::image("m32"));
+  const auto& dir = m.watch_pin('C', 3);  // Y's DIR
+  for (const std::string& l : text) m.serial().add_line(l);
+  ASSERT_EQ(m.run_script(uint64_t(30) * m.f_cpu()), sim::RunEnd::done);
+  const auto& y = m.axis('Y')->step_cycles;
+  const uint64_t setup = (uint64_t(m.f_cpu()) * 650 + 999999999) / 1000000000;
+  size_t d = 0, flips_under_way = 0;
+  uint64_t least = ~0ull;  // shortest DIR change to step, cycles
+  for (size_t k = 0; k < y.size(); ++k) {
+    while (d < dir.size() && dir[d].cycle <= y[k]) ++d;
+    if (d > 0) EXPECT_GE(y[k] - dir[d - 1].cycle, setup) << "Y step " << k;
+    if (d > 0) least = std::min(least, y[k] - dir[d - 1].cycle);
+    // A flip between two steps less than 2 ms apart: made at speed.
+    if (k > 0 && d > 0 && dir[d - 1].cycle > y[k - 1] && y[k] - y[k - 1] < m.f_cpu() / 500) ++flips_under_way;
+  }
+  std::printf("zig-zag: %zu of 39 Y reversals made at speed, DIR set %.1f us before the next step at least\n",
+              flips_under_way, least / 16.0);
+  EXPECT_GE(flips_under_way, 30u);
+  for (char axis : {'X', 'Y'}) {
+    const auto& st = m.axis(axis)->step_cycles;
+    for (size_t k = 1; k < st.size(); ++k) ASSERT_GE(st[k] - st[k - 1], 400u - 48u) << axis << " step " << k;
+  }
+  EXPECT_EQ(m.axis('X')->steps(), 40000.0);
+  EXPECT_EQ(m.axis('Y')->steps(), 0.0);
+  EXPECT_EQ(m.starvations(), 0);
+}
