@@ -40,46 +40,14 @@
 #include <type_traits>
 #include <vector>
 
+#include "bench.h"
 #include "machine.h"
 #include "schedule.h"
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-struct Scenario {
-  const char* image;
-  char axis;
-  uint32_t rate;
-  uint32_t accel;
-  uint32_t steps;
-  char pulse_port;  // a STEP pin whose pulse widths to measure, or 0
-  uint8_t pulse_bit;
-  const char* also = "";  // axes moving the same steps with `axis` (a coordinated diagonal)
-};
-
-struct Figures {
-  uint32_t clamped_to = 0;     // 0 = not clamped
-  size_t steps = 0;
-  double cruise_hz = 0;
-  double isr_cycles_per_step = 0;
-  double cpu_load = 0;
-  int64_t spread = 0;          // max - min lateness of the steps against the schedule, whole move
-  size_t doubled = 0;          // intervals > 1.5 x their scheduled interval, whole move
-  uint64_t pulse_min = 0, pulse_max = 0;  // timer-pulsed STEP width, cycles (0: not measured)
-  bool ok = false;
-  char mcu[24] = {};  // the image's part and clock, for the Markdown headings
-  uint32_t f_cpu = 0;
-};
-
-// One image's row of the size table.
-struct SizeRow {
-  bool found = false;  // the image exists (a missing one has no row)
-  char mcu[24] = {};
-  uint32_t f_cpu = 0;
-  size_t flash = 0, ram = 0;  // .text + .data, .data + .bss
-  unsigned stack = 0;         // 0: not measured
-};
+using namespace bench;
 
 // What a job sends back. Plain bytes, so that a child process can write it
 // into a pipe as it is.
@@ -92,80 +60,8 @@ struct Result {
 static_assert(std::is_trivially_copyable<Result>::value, "a Result crosses a pipe as bytes");
 static_assert(sizeof(Result) <= PIPE_BUF, "a Result fits the pipe in one write");
 
-struct Table {
-  const char* title;    // printed above the table (standard output)
-  const char* heading;  // its Markdown heading, after the image, part and clock
-  const char* name;     // a short name, for the anchors
-  std::vector<Scenario> list;
-};
-
-const std::vector<Table>& engine_tables() {
-  static const std::vector<Table> tables = {
-      {"Uno axis Z, hardware-timed STEP (OC1A), ramp planned on the chip, 300000 steps/s^2\n"
-       "(whole move, ramps included: irq cyc/st counts every interrupt from the first step to the\n"
-       " last, response and RETI included, per step; spread is the max - min lateness of the steps\n"
-       " against the planned schedule; doubled counts intervals > 1.5 x their scheduled interval)",
-       "axis Z, hardware-timed STEP on OC1A (D9), 300000 steps/s^2", "uno Z, timer-pulsed STEP",
-       {{"uno", 'Z', 50000, 300000, 60000, 'B', 1},
-        {"uno", 'Z', 100000, 300000, 80000, 'B', 1},
-        {"uno", 'Z', 150000, 300000, 100000, 'B', 1},
-        {"uno", 'Z', 160000, 300000, 100000, 'B', 1},
-        {"uno", 'Z', 250000, 300000, 100000, 'B', 1}}},
-      {"m32 axis X, software STEP pulse (GPIO in the interrupt), 200000 steps/s^2",
-       "axis X, software STEP pulse (GPIO in the interrupt), 200000 steps/s^2", "m32 X, software STEP pulse",
-       {{"m32", 'X', 10000, 200000, 20000, 0, 0},
-        {"m32", 'X', 40000, 200000, 40000, 0, 0},
-        {"m32", 'X', 80000, 200000, 40000, 0, 0}}},
-      {"m32 axes X Y Z (and E), one coordinated diagonal block, software STEP pulses, 200000 steps/s^2\n"
-       "(figures per event of the dominant axis X; every axis steps at every event)",
-       "axes X Y Z (E), one coordinated diagonal block, software STEP pulses, 200000 steps/s^2",
-       "m32 XYZ(E), coordinated",
-       {{"m32", 'X', 10000, 200000, 20000, 0, 0, "YZ"},
-        {"m32", 'X', 40000, 200000, 40000, 0, 0, "YZ"},
-        {"m32", 'X', 40000, 200000, 40000, 0, 0, "YZE"}}},
-      {"Uno axis X, Motor Shield latch (two-phase), 20000 steps/s^2",
-       "axis X, Adafruit Motor Shield v1 latch (74HC595, two-phase), 20000 steps/s^2", "uno X, shield latch",
-       {{"uno", 'X', 2000, 20000, 4000, 0, 0}, {"uno", 'X', 20000, 20000, 20000, 0, 0}}},
-  };
-  return tables;
-}
-
-const char* const kSizeImages[] = {"uno", "m32", "m32-driver", "m16", "m16-8mhz"};
-
-struct PartSize {
-  const char* mcu;
-  unsigned flash, ram;
-};
-const PartSize kParts[] = {{"atmega328p", 32768, 2048}, {"atmega32", 32768, 2048}, {"atmega16", 16384, 1024}};
-
-const PartSize* part_of(const char* mcu) {
-  for (const PartSize& p : kParts) {
-    if (!std::strcmp(p.mcu, mcu)) return &p;
-  }
-  return nullptr;
-}
-
-// Other firmware, as docs/step-engine.md quotes it from the measurements of
-// issue 4: not run here (their images are not part of this repository).
-struct Anchor {
-  const char* firmware;
-  const char* rate;
-  const char* cycles_per_step;
-};
-const Anchor kAnchors[] = {
-    {"grbl 1.1h", "32 kHz", "362"},
-    {"FastAccelStepper", "80 kHz", "149"},
-    {"AccelStepper 1.64", "4.45 kHz", "-"},
-};
-
 std::string image_path(const std::string& dir, const std::string& name) {
   return dir + "/avrmotion-" + name + ".elf";
-}
-
-std::string move_line(const Scenario& s) {
-  std::string line = std::string("MOVE ") + s.axis + std::to_string(s.steps);
-  for (const char* a = s.also; *a; ++a) line += std::string(" ") + *a + std::to_string(s.steps);
-  return line + " F" + std::to_string(s.rate) + " A" + std::to_string(s.accel);
 }
 
 double interrupt_cycles(const std::map<int, sim::IsrStats>& a, const std::map<int, sim::IsrStats>& b) {
@@ -391,157 +287,6 @@ std::vector<Result> run_jobs(const std::vector<Job>& jobs, unsigned workers) {
   std::fprintf(stderr, "avrmotion-bench: %zu jobs on %u worker%s in %.1f s\n", jobs.size(), std::max(workers, 1u),
                workers > 1 ? "s" : "", progress.elapsed());
   return results;
-}
-
-// --- output -------------------------------------------------------------------
-
-std::string clamped_text(const Figures& f) { return f.clamped_to ? std::to_string(f.clamped_to) : "-"; }
-
-std::string pulse_text(const Figures& f) {
-  return f.pulse_max ? std::to_string(f.pulse_min) + ".." + std::to_string(f.pulse_max) : std::string("-");
-}
-
-std::string format(const char* fmt, double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, fmt, v);
-  return b;
-}
-
-void print_sizes(const std::vector<SizeRow>& rows) {
-  std::printf("Image sizes (flash = .text + .data, RAM = .data + .bss; stack measured on the demo-like run)\n");
-  std::printf("%-22s %-11s %14s %14s %8s\n", "image", "mcu", "flash", "RAM", "stack");
-  for (size_t i = 0; i < rows.size(); ++i) {
-    const SizeRow& r = rows[i];
-    if (!r.found) continue;
-    const PartSize* part = part_of(r.mcu);
-    std::printf("%-22s %-11s %6zu (%4.1f%%) %6zu (%4.1f%%) %8s\n", kSizeImages[i], r.mcu, r.flash,
-                part ? 100.0 * r.flash / part->flash : 0, r.ram, part ? 100.0 * r.ram / part->ram : 0,
-                r.stack ? std::to_string(r.stack).c_str() : "-");
-  }
-  std::printf("\n");
-}
-
-void print_engine(const Table& t, const Figures* figures) {
-  std::printf("%s\n", t.title);
-  std::printf("%8s %9s %10s %11s %7s %8s %8s %9s %8s %6s\n", "F asked", "clamped", "cruise Hz", "irq cyc/st",
-              "CPU", "spread", "doubled", "pulse", "steps", "exact");
-  for (size_t i = 0; i < t.list.size(); ++i) {
-    const Scenario& s = t.list[i];
-    const Figures& f = figures[i];
-    std::printf("%8u %9s %10.0f %11.1f %6.1f%% %8lld %8zu %9s %8zu %6s\n", s.rate, clamped_text(f).c_str(),
-                f.cruise_hz, f.isr_cycles_per_step, 100 * f.cpu_load, (long long)f.spread, f.doubled,
-                pulse_text(f).c_str(), f.steps, f.ok ? "yes" : "NO");
-  }
-  std::printf("\n");
-}
-
-// The Markdown page (docs/benchmarks.md): the same figures as the tables on
-// standard output, formatted alike, and nothing that changes from run to run
-// (no date, no wall time), so the page only changes when a figure does.
-std::string markdown(const std::vector<SizeRow>& sizes, const std::vector<std::vector<Figures>>& engine) {
-  std::string o;
-  auto add = [&](const std::string& s) { o += s; };
-  add("# Benchmarks\n\n"
-      "Every figure on this page is printed by `avrmotion-bench`; the page is its output\n"
-      "(`./build/sim/avrmotion-bench --markdown docs/benchmarks.md`), not edited by hand.\n"
-      "The simulation is deterministic: the same images give the same page, whatever the\n"
-      "machine and the number of workers (`--jobs`). How the step engine works and what\n"
-      "limits it: [step-engine.md](step-engine.md).\n\n"
-      "## How it is measured\n\n"
-      "- **Simulator.** The real firmware images (`avrmotion-<board>.elf`, built with\n"
-      "  avr-gcc) run cycle by cycle on libsimavr 1.6 with the project's timing patches\n"
-      "  ([simulator.md](simulator.md): stock simavr 1.6 mis-times timer events and\n"
-      "  pin edges). Each image runs at its board's clock.\n"
-      "- **Traffic.** Each scenario sends one `MOVE` and then 2400 junk lines (`NOP`),\n"
-      "  so the UART receives a line and transmits its error answer during the whole\n"
-      "  motion, as with a sender that streams.\n"
-      "- **Whole move.** Every figure covers the move from its first step to its last,\n"
-      "  ramps included, not only the cruise:\n"
-      "  - *cruise*: the mean rate over the steps planned at the fastest interval;\n"
-      "  - *irq cycles/step*: every interrupt (step and UART) between the first and the\n"
-      "    last step, each with its 4-cycle response and RETI's 4 cycles, divided by\n"
-      "    the intervals between the steps; *CPU* is the same cycles as a share of the\n"
-      "    time from the first step to the last;\n"
-      "  - *spread*: max - min lateness of the steps against the schedule the planner\n"
-      "    computes (the same core code run on the host, `sim/schedule.h`), in cycles;\n"
-      "  - *doubled*: intervals longer than 1.5 times their scheduled interval;\n"
-      "  - *pulse*: shortest..longest STEP high time of the timer-pulsed axis, cycles;\n"
-      "  - *clamped*: the rate the firmware clamped F to (`warning: F clamped to N`);\n"
-      "  - *exact*: the decoded position equals the steps commanded, and as many step\n"
-      "    edges were seen. A run that is not exact, or that did not finish, is a\n"
-      "    broken run and makes the benchmark fail; no figure has a target to meet.\n\n"
-      "## Step engine\n\n");
-  const std::vector<Table>& tables = engine_tables();
-  for (size_t t = 0; t < tables.size(); ++t) {
-    const Figures& first = engine[t].front();
-    add(std::string("### ") + tables[t].list.front().image + " (" + first.mcu + ", " +
-        format("%g MHz", first.f_cpu / 1e6) + "), " + tables[t].heading + "\n\n");
-    add("| command | F asked (Hz) | clamped to (Hz) | cruise (Hz) | irq cycles/step | CPU | spread (cycles) | "
-        "doubled | pulse (cycles) | steps | exact |\n");
-    add("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
-    for (size_t i = 0; i < tables[t].list.size(); ++i) {
-      const Scenario& s = tables[t].list[i];
-      const Figures& f = engine[t][i];
-      add("| `" + move_line(s) + "` | " + std::to_string(s.rate) + " | " + clamped_text(f) + " | " +
-          format("%.0f", f.cruise_hz) + " | " + format("%.1f", f.isr_cycles_per_step) + " | " +
-          format("%.1f %%", 100 * f.cpu_load) + " | " + std::to_string(f.spread) + " | " +
-          std::to_string(f.doubled) + " | " + pulse_text(f) + " | " + std::to_string(f.steps) + " | " +
-          (f.ok ? "yes" : "NO") + " |\n");
-    }
-    add("\n");
-  }
-
-  add("## Image sizes\n\n"
-      "Flash is `.text + .data`, RAM is `.data + .bss` (static data), both read from the\n"
-      "ELF. Stack is the deepest byte the image wrote below its static data, found by\n"
-      "painting the free RAM before reset, on a demo-like run (`MOVE <first axis>200\n"
-      "F2000 A8000`, then `POS`); the driver board takes no commands, so its stack is\n"
-      "not measured. Percentages are of the part's flash and RAM.\n\n"
-      "| image | MCU | clock | flash (B) | of flash | RAM (B) | of RAM | stack (B) | of RAM | RAM + stack |\n"
-      "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-  for (size_t i = 0; i < sizes.size(); ++i) {
-    const SizeRow& r = sizes[i];
-    if (!r.found) continue;
-    const PartSize* p = part_of(r.mcu);
-    auto pct = [&](size_t v, unsigned of) { return p ? format("%.1f %%", 100.0 * v / of) : std::string("?"); };
-    add(std::string("| ") + kSizeImages[i] + " | " + r.mcu + " | " + format("%g MHz", r.f_cpu / 1e6) + " | " +
-        std::to_string(r.flash) + " | " + pct(r.flash, p ? p->flash : 1) + " | " + std::to_string(r.ram) + " | " +
-        pct(r.ram, p ? p->ram : 1) + " | " + (r.stack ? std::to_string(r.stack) : "-") + " | " +
-        (r.stack ? pct(r.stack, p ? p->ram : 1) : "-") + " | " +
-        (r.stack ? pct(r.ram + r.stack, p ? p->ram : 1) : "-") + " |\n");
-  }
-  add("\nParts: ");
-  for (size_t i = 0; i < sizeof kParts / sizeof kParts[0]; ++i) {
-    add(std::string(i ? ", " : "") + kParts[i].mcu + " " + std::to_string(kParts[i].flash) + " B flash / " +
-        std::to_string(kParts[i].ram) + " B RAM");
-  }
-  add(".\n\n");
-
-  add("## Anchors\n\n"
-      "Figures for other AVR step generators, quoted from earlier measurement in the\n"
-      "simulator (issue 4, as [step-engine.md](step-engine.md) states them). They are\n"
-      "not re-measured here: those firmwares are not part of this repository. How\n"
-      "they were measured (UART traffic or not, whole move or cruise only) is not\n"
-      "recorded with them, so compare orders of magnitude, not digits.\n\n"
-      "| firmware | top step rate | cycles per step | source |\n"
-      "|---|---:|---:|---|\n");
-  for (const Anchor& a : kAnchors) {
-    add(std::string("| ") + a.firmware + " | " + a.rate + " | " + a.cycles_per_step +
-        " | quoted, not re-measured |\n");
-  }
-  add("\nThis run's avrmotion figures at the top rate of each table above (the fastest\n"
-      "exact cruise, and its irq cycles/step, UART traffic included):\n\n"
-      "| avrmotion axis | top step rate (Hz) | irq cycles/step | source |\n"
-      "|---|---:|---:|---|\n");
-  for (size_t t = 0; t < tables.size(); ++t) {
-    const Figures* best = nullptr;
-    for (const Figures& f : engine[t]) {
-      if (f.ok && (!best || f.cruise_hz > best->cruise_hz)) best = &f;
-    }
-    add(std::string("| ") + tables[t].name + " | " + (best ? format("%.0f", best->cruise_hz) : "-") + " | " +
-        (best ? format("%.1f", best->isr_cycles_per_step) : "-") + " | measured above |\n");
-  }
-  return o;
 }
 
 const char kUsage[] =

@@ -1,0 +1,76 @@
+// avrmotion-bench's scenarios, figures and pages (sim/bench.cpp runs them).
+//
+//   bench_scenarios.cpp  the engine tables, the images whose sizes are
+//                        measured, the parts' flash and RAM
+//   bench_page.cpp       the tables on standard output and the Markdown page
+//                        (docs/benchmarks.md), both from the same figures
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace bench {
+
+struct Scenario {
+  const char* image;
+  char axis;
+  uint32_t rate;
+  uint32_t accel;
+  uint32_t steps;
+  char pulse_port;  // a STEP pin whose pulse widths to measure, or 0
+  uint8_t pulse_bit;
+  const char* also = "";  // axes moving the same steps with `axis` (a coordinated diagonal)
+};
+
+struct Figures {
+  uint32_t clamped_to = 0;     // 0 = not clamped
+  size_t steps = 0;
+  double cruise_hz = 0;
+  double isr_cycles_per_step = 0;
+  double cpu_load = 0;
+  int64_t spread = 0;          // max - min lateness of the steps against the schedule, whole move
+  size_t doubled = 0;          // intervals > 1.5 x their scheduled interval, whole move
+  uint64_t pulse_min = 0, pulse_max = 0;  // timer-pulsed STEP width, cycles (0: not measured)
+  bool ok = false;
+  char mcu[24] = {};  // the image's part and clock, for the Markdown headings
+  uint32_t f_cpu = 0;
+};
+
+// One image's row of the size table.
+struct SizeRow {
+  bool found = false;  // the image exists (a missing one has no row)
+  char mcu[24] = {};
+  uint32_t f_cpu = 0;
+  size_t flash = 0, ram = 0;  // .text + .data, .data + .bss
+  unsigned stack = 0;         // 0: not measured
+};
+
+struct Table {
+  const char* title;    // printed above the table (standard output)
+  const char* heading;  // its Markdown heading, after the image, part and clock
+  const char* name;     // a short name, for the anchors
+  std::vector<Scenario> list;
+};
+
+const std::vector<Table>& engine_tables();
+std::string move_line(const Scenario& s);
+
+// The images of the size table, in its order.
+extern const char* const kSizeImages[5];
+
+// Each part's flash and RAM, bytes.
+struct PartSize {
+  const char* mcu;
+  unsigned flash, ram;
+};
+extern const PartSize kParts[3];
+const PartSize* part_of(const char* mcu);
+
+void print_sizes(const std::vector<SizeRow>& rows);
+void print_engine(const Table& t, const Figures* figures);
+// The Markdown page: the same figures as the tables on standard output,
+// formatted alike, and nothing that changes from run to run.
+std::string markdown(const std::vector<SizeRow>& sizes, const std::vector<std::vector<Figures>>& engine);
+
+}  // namespace bench

@@ -1,0 +1,55 @@
+#include <cstring>
+
+#include "bench.h"
+
+namespace bench {
+
+const std::vector<Table>& engine_tables() {
+  static const std::vector<Table> tables = {
+      {"Uno axis Z, hardware-timed STEP (OC1A), ramp planned on the chip, 300000 steps/s^2\n"
+       "(whole move, ramps included: irq cyc/st counts every interrupt from the first step to the\n"
+       " last, response and RETI included, per step; spread is the max - min lateness of the steps\n"
+       " against the planned schedule; doubled counts intervals > 1.5 x their scheduled interval)",
+       "axis Z, hardware-timed STEP on OC1A (D9), 300000 steps/s^2", "uno Z, timer-pulsed STEP",
+       {{"uno", 'Z', 50000, 300000, 60000, 'B', 1},
+        {"uno", 'Z', 100000, 300000, 80000, 'B', 1},
+        {"uno", 'Z', 150000, 300000, 100000, 'B', 1},
+        {"uno", 'Z', 160000, 300000, 100000, 'B', 1},
+        {"uno", 'Z', 250000, 300000, 100000, 'B', 1}}},
+      {"m32 axis X, software STEP pulse (GPIO in the interrupt), 200000 steps/s^2",
+       "axis X, software STEP pulse (GPIO in the interrupt), 200000 steps/s^2", "m32 X, software STEP pulse",
+       {{"m32", 'X', 10000, 200000, 20000, 0, 0},
+        {"m32", 'X', 40000, 200000, 40000, 0, 0},
+        {"m32", 'X', 80000, 200000, 40000, 0, 0}}},
+      {"m32 axes X Y Z (and E), one coordinated diagonal block, software STEP pulses, 200000 steps/s^2\n"
+       "(figures per event of the dominant axis X; every axis steps at every event)",
+       "axes X Y Z (E), one coordinated diagonal block, software STEP pulses, 200000 steps/s^2",
+       "m32 XYZ(E), coordinated",
+       {{"m32", 'X', 10000, 200000, 20000, 0, 0, "YZ"},
+        {"m32", 'X', 40000, 200000, 40000, 0, 0, "YZ"},
+        {"m32", 'X', 40000, 200000, 40000, 0, 0, "YZE"}}},
+      {"Uno axis X, Motor Shield latch (two-phase), 20000 steps/s^2",
+       "axis X, Adafruit Motor Shield v1 latch (74HC595, two-phase), 20000 steps/s^2", "uno X, shield latch",
+       {{"uno", 'X', 2000, 20000, 4000, 0, 0}, {"uno", 'X', 20000, 20000, 20000, 0, 0}}},
+  };
+  return tables;
+}
+
+const char* const kSizeImages[5] = {"uno", "m32", "m32-driver", "m16", "m16-8mhz"};
+
+const PartSize kParts[3] = {{"atmega328p", 32768, 2048}, {"atmega32", 32768, 2048}, {"atmega16", 16384, 1024}};
+
+const PartSize* part_of(const char* mcu) {
+  for (const PartSize& p : kParts) {
+    if (!std::strcmp(p.mcu, mcu)) return &p;
+  }
+  return nullptr;
+}
+
+std::string move_line(const Scenario& s) {
+  std::string line = std::string("MOVE ") + s.axis + std::to_string(s.steps);
+  for (const char* a = s.also; *a; ++a) line += std::string(" ") + *a + std::to_string(s.steps);
+  return line + " F" + std::to_string(s.rate) + " A" + std::to_string(s.accel);
+}
+
+}  // namespace bench
