@@ -32,7 +32,7 @@
 //             events/s^2: no axis exceeds its acceleration.
 //     junction with the block before, in (mm/s)^2 along the path: grbl's
 //             v^2 = a d h / (1 - h), h = sin(theta / 2), theta the angle
-//             between the reversed previous direction and the new one, a
+//             between the reversed previous direction and this block's, a
 //             the largest acceleration along the change of direction that
 //             every path axis allows, d the deviation; capped by both blocks'
 //             nominal speeds (straight on: the nominal; a reversal: 0).

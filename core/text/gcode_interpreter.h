@@ -41,7 +41,7 @@
 //                      centre_length[] (the same in 1/10000 mm) and radius
 //                      (1/10000 mm). end == start (I/J form) is a full circle.
 //     dwell            G4 P<seconds>: dwell_ms (rounded)
-//     set_position     G92: nothing moves; the new offsets are in the state
+//     set_position     G92: nothing moves; the changed offsets are in the state
 //     report_position  M114: print state().axis[i].coord (and .steps)
 //     enable, release  M17; M18 or M84 (every axis)
 //     set_mode         M350: mode[i] for every axis in `axes`
@@ -218,7 +218,7 @@ GcodeError GcodeInterpreter<N, Arcs>::execute(const GcodeBlock& b, GcodeAction<N
   const uint32_t words = b.words;
   if (words & kGcodeAxisLetters & ~board_letters_) return GcodeError::no_such_axis;
   const bool axis_words = (words & kGcodeAxisLetters) != 0;
-  // The new state is built in m, a.coord[], a.target[] and offset[]; state_
+  // The next state is built in m, a.coord[], a.target[] and offset[]; state_
   // is only written once the whole line has been accepted.
   GcodeModal m = state_.modal;
 

@@ -55,13 +55,15 @@ uint8_t energised;     // axes a G-code block has energised (they stay so until 
 bool direct_waiting;   // a direct move to queue once the ring is empty
 am::TrapezoidBlock direct;
 planner::Move direct_move;
-uint8_t direct_mask, direct_dirs;
 uint32_t dwell_ms;     // of a dwell still to be queued
 bool starting, draining;
 uint32_t last_add;     // clock tick of the last G-code block
 bool engine_was_busy;  // at the end of the last pump()
 bool exit_moving;      // the last block ends at speed: the next must follow at once
 uint16_t starvations;  // see path.h; read by the simulator (sim/report.cpp)
+
+// Every block handed to the engine.
+bool idle() { return !generating && !direct_waiting && dwell_ms == 0 && ring_empty(); }
 
 void set_steps_per_mm() {
   for (uint8_t i = 0; i < kAxes; ++i) {
@@ -79,11 +81,12 @@ bool take_now() {
   return starting && clock::reached(last_add + clock::ms(kStartDelayMs));
 }
 
-void begin(const am::TrapezoidBlock& b, const int32_t (&steps)[kAxes], uint8_t mask, uint8_t dirs) {
+void begin(const am::TrapezoidBlock& b, const planner::Steps& steps) {
+  const uint8_t mask = planner::mask_of(steps);
   if (mask & (mask - 1)) engine::begin_block(serial)->start(steps);
   runs.start(b, board::kStepTimerHz);
   axis_mask = mask;
-  dir_mask = dirs;
+  dir_mask = planner::dirs_of(steps);
   exit_moving = b.exit > 0;
   generating = true;
 }
@@ -94,28 +97,23 @@ void begin(const am::TrapezoidBlock& b, const int32_t (&steps)[kAxes], uint8_t m
 bool take() {
   if (!engine::block_available()) return false;
   if (direct_waiting) {
-    begin(direct, direct_move.steps, direct_mask, direct_dirs);
+    begin(direct, direct_move.steps);
     direct_waiting = false;
     return true;
   }
   if (ring_empty() || !take_now()) return false;
   const Block* b = plan().take();
-  uint8_t mask = 0, dirs = 0;
-  for (uint8_t i = 0; i < kAxes; ++i) {
-    if (b->steps[i]) mask |= uint8_t(1u << i);
-    if (b->steps[i] > 0) dirs |= uint8_t(1u << i);
-  }
-  begin(am::TrapezoidBlock{b->events, b->entry, b->cruise, b->exit, b->accel}, b->steps, mask, dirs);
+  begin(am::TrapezoidBlock{b->events, b->entry, b->cruise, b->exit, b->accel}, b->steps);
   plan().done();
   return true;
 }
 
-// Whole milliseconds, one timer period each, no axis stepping.
-bool queue_dwell() {
+// Whole milliseconds, one timer period each, no axis stepping (the caller
+// has made sure the queue has room).
+void queue_dwell() {
   const uint16_t ms = dwell_ms > 0xFFFF ? 0xFFFF : uint16_t(dwell_ms);
-  if (!engine::push(am::StepSegment::make(F_CPU / 1000, ms, 0, 0))) return false;
+  engine::push(am::StepSegment::make(F_CPU / 1000, ms, 0, 0));
   dwell_ms -= ms;
-  return true;
 }
 
 }  // namespace
@@ -132,7 +130,7 @@ Added add(const planner::Move& move, const float (&delta_mm)[kAxes], float feed_
   last_add = clock::now();
   // Energised before counting: a coil axis's first energising snaps it to
   // its mode's grid, and the count starts from there (planner::count()).
-  const uint8_t mask = planner::mask_of(move);
+  const uint8_t mask = planner::mask_of(move.steps);
   if (mask & ~energised) {
     board::Axes::energise(uint8_t(mask & ~energised));
     energised |= mask;
@@ -145,16 +143,14 @@ float held_feed() { return plan().newest_nominal() * 60; }
 
 bool ready_for(const planner::Move& move) {
   if (!idle()) return false;
-  return !engine::busy() || axis_mask == planner::mask_of(move);
+  return !engine::busy() || axis_mask == planner::mask_of(move.steps);
 }
 
 void add_direct(const planner::Move& move, const planner::Ramp& ramp) {
   direct_move = move;
-  direct_mask = planner::mask_of(move);
-  direct_dirs = planner::dirs_of(move);
-  direct = am::TrapezoidBlock{planner::dominant_count(move), 0.0f, float(ramp.rate), 0.0f, float(ramp.accel)};
+  direct = am::TrapezoidBlock{planner::dominant_count(move.steps), 0.0f, float(ramp.rate), 0.0f, float(ramp.accel)};
   const bool at_rest = !engine::busy();
-  board::Axes::energise(direct_mask);
+  board::Axes::energise(planner::mask_of(move.steps));
   planner::count(move, at_rest);
   direct_waiting = true;
   pump();
@@ -167,7 +163,6 @@ void release() {
   energised = 0;
 }
 void start() { starting = true; }
-void drain() { draining = true; }
 
 void pump() {
   if (engine_was_busy && !engine::busy() && (generating || exit_moving)) ++starvations;
@@ -198,6 +193,12 @@ void pump() {
   }
 }
 
-bool idle() { return !generating && !direct_waiting && dwell_ms == 0 && ring_empty(); }
+bool handed_over() {
+  if (idle()) return true;
+  draining = true;
+  return false;
+}
+
+bool at_rest() { return handed_over() && !engine::busy(); }
 
 }  // namespace path

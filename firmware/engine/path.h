@@ -26,9 +26,10 @@
 //   is on its way for now and kStartDelayMs have passed since the last block
 //   arrived (so the first block of a program is planned with those after
 //   it). A taken block's speeds are final; its segments go to the engine as
-//   the queue takes them. drain() makes pump() take every block now (a
-//   command that waits for the motion to end calls it). idle() is true when
-//   every block has been handed to the engine.
+//   the queue takes them. handed_over() is true when every block has been
+//   handed to the engine; asking it is waiting for that, so while it is false
+//   pump() takes every block at once. at_rest() is handed_over() and the
+//   engine stopped: what a command that needs the motion ended waits for.
 //   `starvations` (in path.cpp; the simulator's report reads it) counts the
 //   times the engine ran dry while a block still had segments to queue or
 //   ended at speed: the path fell behind the motion.
@@ -61,8 +62,8 @@ void dwell(uint32_t ms);
 // its axes again.
 void release();
 void start();
-void drain();
 void pump();
-bool idle();
+bool handed_over();
+bool at_rest();
 
 }  // namespace path

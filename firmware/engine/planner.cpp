@@ -16,29 +16,29 @@ uint32_t rate_limit(uint8_t axis, bool several) {
 
 }  // namespace
 
-uint8_t mask_of(const Move& move) {
+uint8_t mask_of(const Steps& steps) {
   uint8_t mask = 0;
   for (uint8_t i = 0; i < board::Axes::count; ++i)
-    if (move.steps[i]) mask |= uint8_t(1u << i);
+    if (steps[i]) mask |= uint8_t(1u << i);
   return mask;
 }
 
-uint8_t dirs_of(const Move& move) {
+uint8_t dirs_of(const Steps& steps) {
   uint8_t dirs = 0;
   for (uint8_t i = 0; i < board::Axes::count; ++i)
-    if (move.steps[i] > 0) dirs |= uint8_t(1u << i);
+    if (steps[i] > 0) dirs |= uint8_t(1u << i);
   return dirs;
 }
 
-uint32_t dominant_count(const Move& move) {
+uint32_t dominant_count(const Steps& steps) {
   uint32_t most = 0;
   for (uint8_t i = 0; i < board::Axes::count; ++i)
-    if (magnitude(move.steps[i]) > most) most = magnitude(move.steps[i]);
+    if (magnitude(steps[i]) > most) most = magnitude(steps[i]);
   return most;
 }
 
 Refusal check(const Move& move) {
-  const uint8_t mask = mask_of(move);
+  const uint8_t mask = mask_of(move.steps);
   if (mask == 0) return Refusal::nothing_to_do;
   // The timer-pulsed axis's edge is armed one period ahead, before the
   // interpolator has said whether it steps: it moves alone.
@@ -66,8 +66,8 @@ RampError check_ramp(const Ramp& ramp) {
 }
 
 uint8_t clamp(const Move& move, Ramp& ramp) {
-  const uint32_t events = dominant_count(move);
-  const bool several = coordinated(mask_of(move));
+  const uint32_t events = dominant_count(move.steps);
+  const bool several = coordinated(mask_of(move.steps));
   uint8_t clamped = 0;
   for (uint8_t i = 0; i < board::Axes::count; ++i) {
     const uint32_t n = magnitude(move.steps[i]);

@@ -44,10 +44,12 @@ RampError check_ramp(const Ramp& ramp);
 constexpr uint8_t kClampedRate = 1, kClampedAccel = 2;
 uint8_t clamp(const Move& move, Ramp& ramp);
 
-// Steps of the axis with the most; which axes move; which move forward.
-uint32_t dominant_count(const Move& move);
-uint8_t mask_of(const Move& move);
-uint8_t dirs_of(const Move& move);
+// Of steps per axis (a Move's, a planned block's): the steps of the axis
+// with the most, which axes move, which move forward.
+using Steps = int32_t[board::Axes::count];
+uint32_t dominant_count(const Steps& steps);
+uint8_t mask_of(const Steps& steps);
+uint8_t dirs_of(const Steps& steps);
 
 void count(const Move& move, bool at_rest);
 int32_t position(uint8_t axis);

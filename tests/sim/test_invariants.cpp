@@ -209,7 +209,7 @@ TEST(Invariants, TimerPulseWidthStaysWithinItsBoundsUnderTraffic) {
   // The hardware pulse rises on the match and ends in the step vector, 35
   // cycles later on the Uno (the board asks for 32), later by whatever holds
   // the vector off: here the UART handlers, answering junk lines during
-  // every move (avrmotion-bench sees up to 75). It must end well before the
+  // every move (avrmotion-bench sees up to 82). It must end well before the
   // next match at 160 kHz (100 cycles).
   sim::Machine m(simtest::image("uno"));
   const auto& step = m.watch_pin('B', 1);
@@ -406,7 +406,7 @@ void check_coordinated(const CoordinatedCase& c, uint64_t seed, size_t count) {
 // A coordinated event's outputs leave in axis order, the shield's latch once
 // every axis has staged its step: on the Uno a dominant axis's edge moves by
 // the work of the axes stepping before it (shield staging about 40 cycles
-// each, a ULN2003 step about 70), 154 cycles seen (docs/step-engine.md).
+// each, a ULN2003 step about 70), 157 cycles seen (docs/step-engine.md).
 constexpr int64_t kCoordinatedCoilJitter = 192;
 
 const int kUnits1[] = {1, 1, 1, 1, 2};

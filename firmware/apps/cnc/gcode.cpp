@@ -9,7 +9,6 @@
 #include "../../board.h"
 #include "../../engine/path.h"
 #include "../../engine/planner.h"
-#include "../../engine/step_engine.h"
 #include "reply.h"
 
 namespace gcode {
@@ -73,15 +72,6 @@ void report_position() {
   hal::uart::write('\n');
 }
 
-// Whether everything before has run; if not, the path is told to start on
-// what it holds, since nothing can follow until it has.
-bool motion_done() {
-  if (!path::idle()) {
-    path::drain();
-    return false;
-  }
-  return !engine::busy();
-}
 
 // Steps of each axis's current mode from where the planner has it to the
 // target (position units; a coil axis's step is 64 / microsteps of them),
@@ -101,9 +91,7 @@ planner::Move move_of_action() {
 // its length and direction from the program coordinates.
 bool move() {
   const planner::Move m = move_of_action();
-  bool steps = false;
-  for (uint8_t i = 0; i < kAxes; ++i) steps |= m.steps[i] != 0;
-  if (!steps) return true;
+  if (planner::mask_of(m.steps) == 0) return true;
   float delta_mm[kAxes];
   for (uint8_t i = 0; i < kAxes; ++i) delta_mm[i] = float(action.coord[i] - coord_before[i]) * 1e-4f;
   // bad_feed cannot come back: the interpreter refuses F <= 0 on a G1.
@@ -169,10 +157,7 @@ bool execute() {
       if (!move()) return false;
       break;
     case am::GcodeActionKind::dwell:
-      if (!path::idle()) {
-        path::drain();
-        return false;
-      }
+      if (!path::handed_over()) return false;
       path::dwell(action.dwell_ms);
       break;
     case am::GcodeActionKind::report_position:
@@ -183,11 +168,11 @@ bool execute() {
       break;
     case am::GcodeActionKind::release:
     case am::GcodeActionKind::program_end:
-      if (!motion_done()) return false;
+      if (!path::at_rest()) return false;
       if (action.kind == am::GcodeActionKind::release) path::release();
       break;
     case am::GcodeActionKind::set_mode:
-      if (!motion_done()) return false;
+      if (!path::at_rest()) return false;
       // The interpreter checked every mode against the axis's table.
       for (uint8_t i = 0; i < kAxes; ++i)
         if (action.axes & (1u << i)) AxisModes<board::Axes>::set(board::Axes::name_at(i), action.mode[i]);

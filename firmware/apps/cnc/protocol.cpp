@@ -9,7 +9,6 @@
 #include "../../axes/axis_modes.h"
 #include "../../engine/path.h"
 #include "../../engine/planner.h"
-#include "../../engine/step_engine.h"
 #include "gcode.h"
 #include "reply.h"
 
@@ -55,15 +54,6 @@ void warn_clamped(char word, uint32_t value) {
   hal::uart::write('\n');
 }
 
-// Whether everything before has run (the path is told to start on what it
-// holds: nothing can follow until it has).
-bool motion_done() {
-  if (!path::idle()) {
-    path::drain();
-    return false;
-  }
-  return !engine::busy();
-}
 
 // The longest move: positions are kept in 1/64 full step for coil axes,
 // and 2^24 * 64 still fits the 32-bit counters.
@@ -86,8 +76,7 @@ bool execute(const am::Command& c) {
         }
         move.steps[axis] = c.axis_steps[k];
       }
-      if (!path::idle()) path::drain();
-      if (!path::ready_for(move)) return false;
+      if (!path::handed_over() || !path::ready_for(move)) return false;
       switch (planner::check(move)) {
         case planner::Refusal::none: break;
         case planner::Refusal::nothing_to_do: ok(); return true;
@@ -113,7 +102,7 @@ bool execute(const am::Command& c) {
       return true;
     }
     case am::CommandKind::position:
-      if (!motion_done()) return false;
+      if (!path::at_rest()) return false;
       hal::uart::write_P(PSTR("pos"));
       for (uint8_t i = 0; i < board::Axes::count; ++i) {
         hal::uart::write(' ');
@@ -125,17 +114,17 @@ bool execute(const am::Command& c) {
       ok();
       return true;
     case am::CommandKind::release:
-      if (!motion_done()) return false;
+      if (!path::at_rest()) return false;
       path::release();
       ok();
       return true;
     case am::CommandKind::wait:
-      if (!motion_done()) return false;
+      if (!path::at_rest()) return false;
       ok();
       return true;
     case am::CommandKind::mode:
       // Like POS: only an idle axis changes mode (docs/modes.md).
-      if (!motion_done()) return false;
+      if (!path::at_rest()) return false;
       switch (AxisModes<board::Axes>::set(c.axis, uint8_t(c.steps))) {
         case ModeResult::ok: ok(); break;
         case ModeResult::no_axis: error(PSTR("no such axis on this board")); break;
