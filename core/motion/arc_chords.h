@@ -3,39 +3,46 @@
 // speed with acceleration instead of stopping at every chord.
 //
 // Contract
+//   All lengths are integers of one unit on every axis: the firmware gives
+//   machine steps, so a chord end is a point the motors can stand on.
 //   start(from, to, plane0, plane1, centre, clockwise, tolerance) plans the
-//   arc from program position `from` to `to` (N axes, 1/10000 mm, "lu")
-//   around from + centre (GcodeAction::centre_length) in the plane of axes
-//   plane0 and plane1; counter-clockwise turns from plane0 towards plane1,
-//   clockwise (G2) the other way. The sweep runs from the start's angle to
-//   the end's in that direction, in (0, 360] degrees: an end on the start's
-//   ray (from == to in the plane) is a full circle. The radius goes linearly
-//   with the angle from the start radius r0 to the end radius r1, and every
-//   other axis (a helix's Z, the extruder) linearly from `from` to `to`.
-//   chords() is then n, the smallest n >= 1 with
-//   max(r0, r1) (1 - cos(sweep / 2n)) <= tolerance: every chord's sag within
-//   `tolerance` lu. start() returns false and changes nothing for
-//   tolerance < 1, a bad plane, a zero start or end radius, n > 65535, or a
-//   circle that leaves the int32 range (|centre| + radius >= 2^31 - 3648 on
-//   a plane axis; this covers every overflow of from + centre, to - centre).
-//   next(point) gives the end of chord k = 1..n, then false: the spiral's
-//   point at angle k sweep / n and radius r0 + (r1 - r0) k / n, each axis
-//   rounded to the nearest lu; the last one is `to` exactly. Every point
-//   comes from k alone, nothing accumulates: before rounding it is within
-//   0.01 lu of the spiral (|r1 - r0| up to the interpreter's 0.5 mm, any
-//   radius the range allows), within 0.7171 lu after; the float angle moves
-//   it along the arc by a few 1e-7 rad (3 lu at 500 mm).
+//   arc from `from` to `to` (N axes) around from + centre in the plane of
+//   axes plane0 and plane1; counter-clockwise turns from plane0 towards
+//   plane1, clockwise (G2) the other way. The sweep runs from the start's
+//   angle to the end's in that direction, in (0, 360] degrees: an end on the
+//   start's ray (from == to in the plane) is a full circle. The radius goes
+//   linearly with the angle from the start radius r0 to the end radius r1,
+//   and every other axis (a helix's Z, the extruder) linearly from `from` to
+//   `to`. chords() is then n, the smallest n >= 1 with
+//   max(r0, r1) (1 - cos(sweep / 2n)) <= tolerance (units, a fraction of one
+//   is fine): every chord's sag within `tolerance`. start() returns false
+//   and changes nothing for tolerance <= 0, a bad plane, a zero start or end
+//   radius, n > 65535, or a circle that leaves the int32 range
+//   (|centre| + radius >= 2^31 - 3648 on a plane axis; this covers every
+//   overflow of from + centre, to - centre).
+//   next(point) gives the end of chord k = 1..n, then false (done() is
+//   then true): the lattice
+//   point nearest the spiral across it, near the spiral's point at angle
+//   k sweep / n and radius r0 + (r1 - r0) k / n. The plane axis nearer the
+//   tangent there is rounded (at most half a unit along the arc), the other
+//   is the rounded crossing of the spiral with that grid line, so the point
+//   is within half a unit of the spiral radially (plus 0.01 of float error),
+//   where rounding both axes would allow 0.71. The last point is `to`
+//   exactly. Every point comes from k alone, nothing accumulates: before
+//   rounding it is within 0.01 unit of the spiral (|r1 - r0| up to the
+//   interpreter's 0.5 mm, any radius the range allows); the float angle
+//   moves it along the arc by a few 1e-7 rad (3 units at 5e6 units).
 //
 // Why this form
 //   The chip cannot hold the integer circular DDA (arc_dda.h, 9.8 KB); this
 //   is float trigonometry once per chord, in the main loop. Float alone is
-//   not enough: a rounding costs 0.3 lu of radius at 500 mm, and avr-libc's
+//   not enough: a rounding costs 0.3 unit of radius at 5e6 units, and avr-libc's
 //   sinf/cosf are not correctly rounded. So only the angle is float. cos and
 //   sin become Q30 integers C, S, the exact start vector s = start - centre
 //   is rotated exactly in 64 bits, (s0 C - s1 S, s0 S + s1 C), and since
 //   C^2 + S^2 = 2^60 (1 + e) is exact too, scaling by
 //   (1 + delta) / sqrt(1 + e) (first order in the tiny e, a float term of at
-//   most |r1 - r0| and a fraction of a lu) puts the point on the spiral's
+//   most |r1 - r0| and a fraction of a unit) puts the point on the spiral's
 //   radius whatever the trig error. r1 - r0 comes from the exact
 //   r1^2 - r0^2, the sweep's sign from the exact cross product. The other
 //   axes step exactly with a quotient and remainder by n (one add and a
@@ -60,8 +67,8 @@ class ArcChords {
 
  public:
   bool start(const int32_t (&from)[N], const int32_t (&to)[N], uint8_t plane0, uint8_t plane1,
-             const int32_t (&centre)[2], bool clockwise, int32_t tolerance) {
-    if (tolerance < 1 || plane0 >= N || plane1 >= N || plane0 == plane1) return false;
+             const int32_t (&centre)[2], bool clockwise, float tolerance) {
+    if (!(tolerance > 0) || plane0 >= N || plane1 >= N || plane0 == plane1) return false;
     // Centre, start and end relative to it, in wrapping arithmetic: a value that wraps puts the
     // circle beyond the int32 range (|c| + r > 2^31 on that axis), so inside() refuses it.
     int32_t c[2], e[2];
@@ -81,7 +88,7 @@ class ArcChords {
 
     // The fewest chords with sag rmax (1 - cos(dphi / 2)) <= tolerance: dphi / 2 <= acos(1 - w).
     uint16_t n = 1;
-    const float w = float(tolerance) / rmax;
+    const float w = tolerance / rmax;
     if (w < 2) {
       const float q = fabsf(sweep) / (2 * atan2f(sqrtf(w * (2 - w)), 1 - w));
       if (q > 65535.0f) return false;
@@ -103,6 +110,8 @@ class ArcChords {
   }
 
   uint16_t chords() const { return n_; }
+  // Every chord given out (also before any start()).
+  bool done() const { return k_ == n_; }
 
   bool next(int32_t (&point)[N]) {
     if (k_ == n_) return false;
@@ -126,16 +135,21 @@ class ArcChords {
     const float k = float(k_), one = 1073741824.0f;  // 2^30
     const float angle = step_ * k, cf = cosf(angle), sf = sinf(angle);
     const int32_t cq = int32_t(cf * one), sq = int32_t(sf * one);
-    int32_t whole;
-    const float rest = split(dot2(cq, cq, sq, sq), whole);  // C^2 + S^2 = 2^60 (1 + excess)
-    const float excess = (float(whole - (int32_t(1) << 30)) + rest) * (1 / one);
+    int32_t norm;
+    const float rest = split(dot2(cq, cq, sq, sq), norm);  // C^2 + S^2 = 2^60 (1 + excess)
+    const float excess = (float(norm - (int32_t(1) << 30)) + rest) * (1 / one);
     const float delta = grow_ * k;
     const float scale = delta - 0.5f * excess * (1 + delta);  // (1 + delta) / sqrt(1 + excess) - 1
-    for (uint8_t j = 0; j < 2; ++j) {
-      const float f = split(dot2(start_[0], j ? sq : cq, start_[1], j ? cq : -sq), whole);
-      const int32_t near = nearest(f + scale * (float(whole) + f));
-      point[plane_[j]] = int32_t(uint32_t(centre_[j]) + uint32_t(whole) + uint32_t(near));
-    }
+    int32_t w0, w1;  // the spiral's point, relative to the centre: w + p on each plane axis
+    float p0 = split(dot2(start_[0], cq, start_[1], -sq), w0);
+    float p1 = split(dot2(start_[0], sq, start_[1], cq), w1);
+    p0 += scale * (float(w0) + p0);
+    p1 += scale * (float(w1) + p1);
+    int32_t n0, n1;
+    if (magnitude(w0) <= magnitude(w1)) n0 = snap(w0, p0, w1, p1, n1);
+    else n1 = snap(w1, p1, w0, p0, n0);
+    point[plane_[0]] = int32_t(uint32_t(centre_[0]) + uint32_t(w0) + uint32_t(n0));
+    point[plane_[1]] = int32_t(uint32_t(centre_[1]) + uint32_t(w1) + uint32_t(n1));
     return true;
   }
 
@@ -184,6 +198,22 @@ class ArcChords {
     return float(low) * (1 / 4294967296.0f);
   }
   static int32_t nearest(float v) { return int32_t(v < 0 ? v - 0.5f : v + 0.5f); }
+  // The lattice point nearest the circle through (xw + xp, yw + yp) across it, x being the
+  // axis nearer the tangent (the smaller coordinate): x rounded (the result, an offset from
+  // xw), the point moved along the circle onto that grid line, y rounded (`y_near`, from yw).
+  // On a circle y^2 changes by -dx (2 x + dx) when x moves by dx.
+  __attribute__((noinline)) static int32_t snap(int32_t xw, float xp, int32_t yw, float yp, int32_t& y_near) {
+    const int32_t xn = nearest(xp);
+    const float dx = float(xn) - xp, x = float(xw) + xp, y = float(yw) + yp;
+    const float change = -dx * (2 * x + dx), ya = fabsf(y), yy = ya * ya + change;
+    if (yy > 0) {
+      const float dy = change / (ya + sqrtf(yy));
+      yp += y < 0 ? -dy : dy;
+    }
+    y_near = nearest(yp);
+    return xn;
+  }
+  static uint32_t magnitude(int32_t v) { return v < 0 ? 0u - uint32_t(v) : uint32_t(v); }
 
   int32_t pos_[N] = {};    // point k, before the plane axes are replaced
   uint32_t quot_[N] = {};  // |to - from| / n

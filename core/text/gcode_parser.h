@@ -92,7 +92,7 @@ namespace am {
   X(bad_mode, "mode must be 0, 1, 2, 16, 32 or 64")                          \
   X(axis_has_no_modes, "axis has no excitation modes")                       \
   X(mode_not_available, "mode not available on this axis")                   \
-  X(arcs_not_here, "G2/G3 arcs are not on the step engine yet")
+  X(arcs_not_here, "G2/G3 arcs are not in this board's image")
 
 #define AM_GCODE_ERROR_ENUM(name, text) name,
 enum class GcodeError : uint8_t { AM_GCODE_ERRORS(AM_GCODE_ERROR_ENUM) };
@@ -143,13 +143,23 @@ constexpr uint32_t kGcodeValueLetters = kGcodeAxisLetters | gcode_letter_bit('F'
                                         gcode_letter_bit('J') | gcode_letter_bit('K') | gcode_letter_bit('N') |
                                         gcode_letter_bit('P') | gcode_letter_bit('R');
 
+// A value letter's slot in GcodeBlock::value: how many value letters come
+// before it (a constant where the letter is; the block is on the stack of
+// every line, so it holds the 15 value letters, not all 26).
+constexpr uint8_t gcode_value_slot(char upper_letter) {
+  return uint8_t(__builtin_popcountl(kGcodeValueLetters & (gcode_letter_bit(upper_letter) - 1)));
+}
+constexpr uint8_t kGcodeValueSlots = gcode_value_slot('Z') + 1;
+
 struct GcodeBlock {
-  uint32_t words;                  // gcode_letter_bit() of every value word on the line
-  int32_t value[26];               // by letter - 'A', valid where `words` has the bit; 1/10000 except N
-  GcodeCode code[kGcodeGroups];    // by GcodeGroup; none when the line has no code of it
+  uint32_t words;                     // gcode_letter_bit() of every value word on the line
+  int32_t value[kGcodeValueSlots];    // by gcode_value_slot(), valid where `words` has the bit; 1/10000 except N
+  GcodeCode code[kGcodeGroups];       // by GcodeGroup; none when the line has no code of it
 
   bool has(char upper_letter) const { return (words & gcode_letter_bit(upper_letter)) != 0; }
-  int32_t get(char upper_letter) const { return value[upper_letter - 'A']; }
+  int32_t get(char upper_letter) const { return value[slot(upper_letter)]; }
+  // Out of line: most letters are only known at run time (an axis table's).
+  __attribute__((noinline)) static uint8_t slot(char upper_letter) { return gcode_value_slot(upper_letter); }
   GcodeCode group(GcodeGroup g) const { return code[uint8_t(g)]; }
 };
 
@@ -237,7 +247,7 @@ inline GcodeError parse_gcode(const char* p, GcodeBlock& b, const char* end = nu
       const uint32_t bit = gcode_letter_bit(letter);
       if (b.words & bit) return GcodeError::repeated_word;
       b.words |= bit;
-      b.value[letter - 'A'] = v;
+      b.value[GcodeBlock::slot(letter)] = v;
     }
   }
 }

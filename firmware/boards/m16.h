@@ -45,6 +45,7 @@ constexpr uint32_t kMaxStepRate = F_CPU / 800;  // 20 kHz at 16 MHz, 10 kHz at 8
 // No G-code: its front end (about 8 KB) does not fit beside the engine in
 // the ATmega16's 16 KB; this board is for the lathe program.
 constexpr bool kGcode = false;
+constexpr bool kArcs = false;  // no G-code at all
 constexpr uint8_t kPathBlocks = 4;  // look-ahead ring of G-code blocks (firmware/engine/path.h)
 constexpr uint32_t kDefaultRate = 1000;
 constexpr uint32_t kDefaultAccel = 4000;

@@ -62,6 +62,7 @@ constexpr uint32_t kBaud = 115200;
 constexpr uint32_t kStepTimerHz = F_CPU;
 constexpr uint32_t kMaxStepRate = 20000;
 constexpr bool kGcode = true;  // the cnc program speaks G-code (docs/gcode.md)
+constexpr bool kArcs = false;  // G2/G3 need about 4 KB of flash; this image has 1.1 KB left
 constexpr uint8_t kPathBlocks = 5;  // look-ahead ring of G-code blocks (firmware/engine/path.h); RAM: the stack needs 360 B
 constexpr uint32_t kDefaultRate = 400;   // steps/s
 constexpr uint32_t kDefaultAccel = 800;  // steps/s^2

@@ -118,8 +118,10 @@ void queue_dwell() {
 
 }  // namespace
 
+bool room() { return !direct_waiting && dwell_ms == 0 && !plan().full(); }
+
 Added add(const planner::Move& move, const float (&delta_mm)[kAxes], float feed_mm_per_min, bool rapid) {
-  if (direct_waiting || dwell_ms || plan().full()) return Added::full;
+  if (!room()) return Added::full;
   const bool at_rest = idle() && !engine::busy();
   if (at_rest) set_steps_per_mm();  // modes change only at rest
   switch (plan().add(move.steps, delta_mm, feed_mm_per_min, rapid)) {

@@ -11,7 +11,8 @@
 //   checked with planner::check() first), the program coordinates' change in
 //   mm (the path's length and direction), the feed in mm/min, rapid for G0.
 //   It answers full (nothing changed: call again) while the ring is full or
-//   a direct move or dwell waits to be queued. held_feed() then says how
+//   a direct move or dwell waits to be queued; room() says so beforehand
+//   (an arc computes a chord only when it can queue it). held_feed() then says how
 //   fast the block will really run.
 //   ready_for(move) says whether a direct move may be queued now: the path
 //   is idle, and the engine is at rest or runs the same axes (energising
@@ -52,6 +53,8 @@ constexpr uint16_t kStartDelayMs = 50;
 
 enum class Added : uint8_t { queued, full, bad_feed };
 Added add(const planner::Move& move, const float (&delta_mm)[board::Axes::count], float feed_mm_per_min, bool rapid);
+// Whether add() would queue a block now (not full).
+bool room();
 // The feed the last queued block runs at, mm/min: its F as the axes' limits
 // hold it (lower than asked: the caller says so).
 float held_feed();

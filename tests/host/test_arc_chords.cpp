@@ -3,12 +3,13 @@
 // dot products, the chord count from the sag formula, every chord end on the
 // spiral (radius linear in the angle) and at its angle, the linear axes from
 // the exact rounding of (to - from) k / n, the last point equal to `to`.
-// Then the chords are stepped as the firmware will: each end rounded to
-// steps, the steps between ends run through LineDda event by event, and
-// every stepped point measured against the arc, at 1000, 80 and 25 steps/mm
-// with the tolerance half a step: within the bound derived in
-// docs/interpolation.md (about 1.7 steps; at most one step everywhere is not
-// reachable this way, the tests print how far and how often it is missed).
+// Then arcs given in steps (as the firmware gives them) are stepped as the
+// firmware steps them: the steps between consecutive chord ends run through
+// LineDda event by event, and every stepped point is measured against the
+// arc, at 1000, 80 and 25 steps/mm with a quarter step of tolerance: within
+// half a step (chord end) + the tolerance + half a step (LineDda's minor
+// axis; 0.71 when a helix axis dominates), docs/interpolation.md. The tests
+// print how far and how often a point is more than one step off.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -31,7 +32,7 @@ struct Arc {
   uint8_t plane0, plane1;
   int32_t centre[2];  // centre - start
   bool cw;
-  int32_t tol;
+  float tol;
 };
 
 // Exact geometry of an arc, in doubles.
@@ -87,7 +88,7 @@ int32_t linear_point(int32_t from, int32_t to, uint32_t k, uint32_t n) {
 }
 
 struct ChordStats {
-  double worst_radial = 0;  // lu, chord end from the spiral
+  double worst_radial = 0;  // units, chord end from the spiral
   unsigned arcs = 0;
   unsigned long chords = 0;
 };
@@ -123,13 +124,15 @@ void check_chords(const Arc& a, ChordStats& st, const char* what, Chords& out) {
     const double q[2] = {double(p[a.plane0]), double(p[a.plane1])};
     const double phi = angle_along(g, q, prev);
     const double nominal = std::fabs(g.sweep) * k / n;
-    // At its angle (float angles: 1e-6 rad, plus the rounding) and in the arc's direction.
-    ASSERT_NEAR(phi, nominal, 1e-6 + 1.0 / g.r0) << what << " k " << k;
-    ASSERT_GT(phi, prev) << what << " k " << k;
-    // Within 0.01 lu of the spiral before rounding; rounding to lu moves it by at most sqrt(2) / 2.
+    // At its angle (float angles: 1e-6 rad, plus the rounding: up to 0.71 unit along the arc
+    // to the grid line, 0.36 more rounding across it) and in the arc's direction.
+    ASSERT_NEAR(phi, nominal, 1e-6 + 1.07 / std::min(g.r0, g.r1)) << what << " k " << k;
+    ASSERT_GE(phi, prev) << what << " k " << k;
+    // The lattice point nearest the spiral across it: within half a unit radially (0.01 of
+    // float error before the rounding).
     const double radial = std::fabs(dist(g, q) - g.radius(phi));
     st.worst_radial = std::max(st.worst_radial, radial);
-    ASSERT_LE(radial, 0.7072 + 0.01) << what << " k " << k << " of " << n;
+    ASSERT_LE(radial, 0.5 + 0.01 + 0.5 * 0.5 / g.r0) << what << " k " << k << " of " << n;
     prev = phi;
   }
   for (uint8_t i = 0; i < kAxes; ++i) EXPECT_EQ(p[i], a.to[i]) << what << " axis " << int(i);
@@ -138,48 +141,40 @@ void check_chords(const Arc& a, ChordStats& st, const char* what, Chords& out) {
   st.chords += n;
 }
 
-// lu to steps, half away from zero; lu_per_step 10 = 1000 steps/mm.
-int32_t to_steps(int32_t c, int32_t lu_per_step) {
-  const int64_t m = c < 0 ? -int64_t(c) : c;
-  const int64_t s = (2 * m + lu_per_step) / (2 * lu_per_step);
-  return int32_t(c < 0 ? -s : s);
-}
-
 struct Stepped {
   double worst_planar = 0, worst_helix = 0;  // steps from the arc
   unsigned long points = 0, over_one = 0;    // stepped points, and those more than 1 step off
 };
 
-// The bound on a stepped point's distance from the arc, in steps (docs/interpolation.md).
-// Each coordinate of the stepped point is off the exact chord by at most 0.5 lu (the chord
-// end rounded to lu) + L/2 (rounded to steps) + L/2 (LineDda, minor axes only): the plane's
-// dominant axis has L/2 + 0.5, unless a helix axis dominates. The exact chord is within
-// the sag (tolerance) of the spiral.
-double stepped_bound(const Arc& a, const Geometry& g, int32_t lu_per_step, bool helix) {
-  const double minor = lu_per_step + 0.5, dominant = helix ? minor : lu_per_step / 2.0 + 0.5;
-  const double offset = std::hypot(minor, dominant) + a.tol + 0.05;
+// The bound on a stepped point's distance from the arc, in steps (docs/interpolation.md): a
+// chord end is within 0.51 of the spiral, the exact chord between two ends within the
+// tolerance of them (its ends may sit half a step further along the arc, which lengthens the
+// chord and its sag by the second term), LineDda's minor axes within half a step of the
+// chord (both plane axes when a helix axis dominates).
+double stepped_bound(const Arc& a, const Geometry& g, bool helix) {
+  const double rmin = std::min(g.r0, g.r1);
+  const double offset = 0.51 + a.tol * (1 + 2 / std::sqrt(2 * rmin * a.tol)) + (helix ? 0.7072 : 0.5) + 0.01;
   // An offset turns the angle by up to offset / room, the radius by (r1 - r0) / sweep per radian,
   // never by more than |r1 - r0|.
-  const double room = std::min(g.r0, g.r1) - offset;
+  const double room = rmin - offset;
   const double turn = room > 0 ? std::min(1.0, offset / (std::fabs(g.sweep) * room)) : 1.0;
-  return (offset + std::fabs(g.r1 - g.r0) * turn) / lu_per_step;
+  return offset + std::fabs(g.r1 - g.r0) * turn;
 }
 
-// Steps the chords as the firmware will: each end to steps (half away from zero), the steps
-// between ends through LineDda, every event's point measured against the arc (the circle of
-// the radius interpolated at the point's angle). Returns the worst distance, in steps.
-double step_chords(const Arc& a, const Chords& chords, int32_t lu_per_step, int32_t (&end_steps)[kAxes],
-                   Stepped& st) {
+// Steps the chords (in steps) as the firmware does: the steps between ends through LineDda,
+// every event's point measured against the arc (the circle of the radius interpolated at the
+// point's angle). Returns the worst distance, in steps.
+double step_chords(const Arc& a, const Chords& chords, int32_t (&end_steps)[kAxes], Stepped& st) {
   const Geometry g = geometry(a);
   int32_t pos[kAxes];
-  for (uint8_t i = 0; i < kAxes; ++i) pos[i] = to_steps(a.from[i], lu_per_step);
+  for (uint8_t i = 0; i < kAxes; ++i) pos[i] = a.from[i];
   const double sweep = std::fabs(g.sweep);
   double phi = 0, worst = 0;
   auto measure = [&]() {
-    const double q[2] = {double(pos[a.plane0]) * lu_per_step, double(pos[a.plane1]) * lu_per_step};
+    const double q[2] = {double(pos[a.plane0]), double(pos[a.plane1])};
     phi = angle_along(g, q, phi);
     const double at = std::min(std::max(phi, 0.0), sweep);
-    const double d = std::fabs(dist(g, q) - g.radius(at)) / lu_per_step;
+    const double d = std::fabs(dist(g, q) - g.radius(at));
     worst = std::max(worst, d);
     ++st.points;
     st.over_one += d > 1;
@@ -187,7 +182,7 @@ double step_chords(const Arc& a, const Chords& chords, int32_t lu_per_step, int3
   measure();
   for (const auto& c : chords) {
     int32_t delta[kAxes];
-    for (uint8_t i = 0; i < kAxes; ++i) delta[i] = to_steps(c[i], lu_per_step) - pos[i];
+    for (uint8_t i = 0; i < kAxes; ++i) delta[i] = c[i] - pos[i];
     am::LineDda<kAxes> dda;
     EXPECT_TRUE(dda.start(delta));
     while (!dda.finished()) {
@@ -199,16 +194,16 @@ double step_chords(const Arc& a, const Chords& chords, int32_t lu_per_step, int3
   }
   for (uint8_t i = 0; i < kAxes; ++i) end_steps[i] = pos[i];
   const bool helix = a.to[2] != a.from[2] || a.to[3] != a.from[3];
-  EXPECT_LE(worst, stepped_bound(a, g, lu_per_step, helix)) << lu_per_step << " lu a step";
+  EXPECT_LE(worst, stepped_bound(a, g, helix));
   double& w = helix ? st.worst_helix : st.worst_planar;
   w = std::max(w, worst);
   return worst;
 }
 
-// A G17 arc of radius r (lu) around c, from angle a0 sweeping `deg` degrees
+// A G17 arc of radius r (units) around c, from angle a0 sweeping `deg` degrees
 // (negative: G2), end radius r + mismatch; Z and E move by dz, de.
 Arc make_arc(double r, double a0, double deg, double mismatch, const int32_t (&c)[2], int32_t dz, int32_t de,
-             int32_t tol) {
+             float tol) {
   Arc a = {};
   a.plane0 = 0;
   a.plane1 = 1;
@@ -280,40 +275,42 @@ TEST(ArcChordsSweep, FullCirclesFromManyStartAngles) {
   std::printf("ArcChords: %u full circles, worst chord end %.3f lu from the circle\n", st.arcs, st.worst_radial);
 }
 
-// The chords of a sweep stepped at lu_per_step lu a step (10: 1000 steps/mm), the tolerance
-// half a step; half of the arcs are helices (Z and E moving). Prints the worst distances.
-void stepped_sweep(int32_t lu_per_step, int count) {
-  std::mt19937 rng{uint32_t(lu_per_step)};
+// Arcs of 0.05 .. 500 mm in steps at steps_per_mm, the tolerance a quarter step, stepped;
+// half of them helices (Z and E moving). Prints the worst distances.
+void stepped_sweep(double steps_per_mm, int count) {
+  std::mt19937 rng{uint32_t(steps_per_mm)};
   std::uniform_real_distribution<double> angle(-kPi, kPi), unit(-1, 1);
   ChordStats cs;
   Stepped st;
-  const int32_t tol = lu_per_step / 2;
-  for (double r : radii(count))
+  const float tol = 0.25f;
+  const double per_lu = steps_per_mm / 1e4;
+  for (double r_lu : radii(count))
     for (double deg : kSweeps)
       for (int dir = 0; dir < 2; ++dir) {
-        const int32_t c[2] = {int32_t(unit(rng) * 1e6), int32_t(unit(rng) * 1e6)};
-        const double mismatch = deg == 360 ? 0 : unit(rng) * std::max(50.0, r / 1000);
+        const double r = std::max(1.0, r_lu * per_lu);
+        const int32_t c[2] = {int32_t(unit(rng) * 1e5), int32_t(unit(rng) * 1e5)};
+        const double mismatch = deg == 360 ? 0 : unit(rng) * std::max(50.0, r_lu / 1000) * per_lu;
         const bool helix = rng() & 1;
-        const int32_t dz = helix ? int32_t(unit(rng) * 1e5) : 0, de = helix ? int32_t(unit(rng) * 1e5) : 0;
+        const int32_t dz = helix ? int32_t(unit(rng) * 1e4) : 0, de = helix ? int32_t(unit(rng) * 1e4) : 0;
         const Arc a = make_arc(r, angle(rng), dir ? -deg : deg, mismatch, c, dz, de, tol);
         Chords chords;
         check_chords(a, cs, "stepped", chords);
         if (::testing::Test::HasFatalFailure()) return;
         int32_t end[kAxes];
-        step_chords(a, chords, lu_per_step, end, st);
-        for (uint8_t i = 0; i < kAxes; ++i) EXPECT_EQ(end[i], to_steps(a.to[i], lu_per_step));
+        step_chords(a, chords, end, st);
+        for (uint8_t i = 0; i < kAxes; ++i) EXPECT_EQ(end[i], a.to[i]);
       }
-  std::printf("ArcChords: %.0f steps/mm, tolerance %d lu: %u arcs, %lu chords, %lu stepped points; "
-              "worst %.3f step from the arc (plane only), %.3f (helix); %.2f %% of the points beyond 1 step\n",
-              10000.0 / lu_per_step, int(tol), cs.arcs, cs.chords, st.points, st.worst_planar, st.worst_helix,
+  std::printf("ArcChords: %.0f steps/mm, tolerance %.2f step: %u arcs, %lu chords, %lu stepped points; "
+              "worst %.3f step from the arc (plane only), %.3f (helix); %.3f %% of the points beyond 1 step\n",
+              steps_per_mm, double(tol), cs.arcs, cs.chords, st.points, st.worst_planar, st.worst_helix,
               100.0 * st.over_one / st.points);
 }
 
-TEST(ArcChordsStepped, At1000StepsPerMm) { stepped_sweep(10, 21); }
-TEST(ArcChordsStepped, At80StepsPerMm) { stepped_sweep(125, 41); }
-TEST(ArcChordsStepped, At25StepsPerMm) { stepped_sweep(400, 41); }
+TEST(ArcChordsStepped, At1000StepsPerMm) { stepped_sweep(1000, 21); }
+TEST(ArcChordsStepped, At80StepsPerMm) { stepped_sweep(80, 41); }
+TEST(ArcChordsStepped, At25StepsPerMm) { stepped_sweep(25, 41); }
 
-// seed-002 §4's circular-DDA vectors (steps, start at 0, 0), at 1000 steps/mm.
+// seed-002 §4's circular-DDA vectors (steps, start at 0, 0).
 TEST(ArcChordsSeedVectors, EndExactly) {
   struct V {
     int32_t x, y, i, j;
@@ -324,19 +321,19 @@ TEST(ArcChordsSeedVectors, EndExactly) {
     Arc a = {};
     a.plane0 = 0;
     a.plane1 = 1;
-    a.to[0] = v.x * 10;
-    a.to[1] = v.y * 10;
-    a.centre[0] = v.i * 10;
-    a.centre[1] = v.j * 10;
+    a.to[0] = v.x;
+    a.to[1] = v.y;
+    a.centre[0] = v.i;
+    a.centre[1] = v.j;
     a.cw = v.cw;
-    a.tol = 5;
+    a.tol = 0.25f;
     ChordStats st;
     Chords chords;
     check_chords(a, st, "seed vector", chords);
     if (HasFatalFailure()) return;
     int32_t end[kAxes];
     Stepped stepped;
-    step_chords(a, chords, 10, end, stepped);
+    step_chords(a, chords, end, stepped);
     EXPECT_EQ(end[0], v.x);
     EXPECT_EQ(end[1], v.y);
   }

@@ -25,7 +25,7 @@ const am::GcodeAxis kM32[] = {{'X', 0, 1000000},
                               {'E', 0, 1000000},
                               {'U', am::kModesUnipolar, 4096}};
 using Interp = am::GcodeInterpreter<5>;
-using NoArcs = am::GcodeInterpreter<5, false>;  // the chip's (firmware/apps/cnc/gcode.cpp)
+using NoArcs = am::GcodeInterpreter<5, false>;  // the Uno's (firmware/apps/cnc/gcode.cpp, board::kArcs)
 using State = am::GcodeState<5>;
 
 template <typename I>

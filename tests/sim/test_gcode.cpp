@@ -102,7 +102,9 @@ TEST(Gcode, RefusedLinesAreAnsweredOnceAndChangeNothing) {
       {"G1 X1 F0", "error: feed rate must be above 0"},
       {"G1 A5", "error: no such axis on this board"},
       {"G4", "error: G4 needs P (seconds)"},
-      {"G2 X3 Y2 I1 J0", "error: G2/G3 arcs are not on the step engine yet"},
+      {"G2 X3 Y2 I5 J0", "error: arc end point not on the circle"},
+      {"G3 X3 Y2", "error: arc needs R or the plane's I/J/K"},
+      {"G2 X1 Y2 R3", "error: R arc cannot end where it starts"},
       {"G1 X1 P2 F100", "error: word not used by any code on the line"},
       {"G1 X300000", "error: number out of range"},
       {"G1 X1 (open", "error: comment not closed"},
@@ -122,10 +124,13 @@ TEST(Gcode, RefusedLinesAreAnsweredOnceAndChangeNothing) {
 }
 
 TEST(Gcode, TheTimerPulsedAxisMovesAloneAndTheRefusalChangesNothing) {
-  auto m = simtest::run("uno", {"G1 X4 Y2 F600", "G1 X8 Z1 F600", "M114", "G1 Z0.5 F300", "M114"}, 20);
+  // The Uno's image has no arcs (flash): a G2 is refused whole as well.
+  auto m = simtest::run("uno", {"G1 X4 Y2 F600", "G1 X8 Z1 F600", "M114", "G1 Z0.5 F300", "G2 X6 Y4 I2 J0", "M114"},
+                        20);
   const std::vector<sim::Response>& r = m->serial().responses();
-  ASSERT_EQ(r.size(), 5u);
+  ASSERT_EQ(r.size(), 6u);
   EXPECT_EQ(r[1].answer, "error: the hardware-timed axis moves alone");
+  EXPECT_EQ(r[4].answer, "error: G2/G3 arcs are not in this board's image");
   // The shield axes: 25 steps/mm; Z: 400 steps/mm.
   EXPECT_EQ(m->axis('X')->steps(), 100.0);
   EXPECT_EQ(m->axis('Y')->steps(), 50.0);

@@ -23,7 +23,7 @@ namespace {
 
 constexpr double kTick = 16000000.0;  // the m32's step timer
 constexpr uint8_t kAxes = 4;          // X Y Z E
-constexpr uint8_t kRing = 6;          // board::kPathBlocks
+constexpr uint8_t kRing = 5;          // board::kPathBlocks
 constexpr double kStepsPerMm = 1000.0;
 
 using Block = am::PathBlock<kAxes>;
@@ -213,7 +213,7 @@ TEST(Path, ShortChordsStreamWithoutStoppingAtAVertex) {
 }
 
 TEST(Path, ParseAndPlanCyclesPerSlicerLine) {
-  // Five lines of a slicer's kind on an idle m32 (the ring of 6 never fills,
+  // Five lines of a slicer's kind on an idle m32 (the ring of 5 never fills,
   // the first block waits for its start): the time from a line's first byte
   // to its answer, less the bytes' own time on the wire (the line, its end,
   // and "ok\n"), is what the firmware spends parsing and planning it.

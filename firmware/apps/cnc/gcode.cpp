@@ -3,6 +3,7 @@
 #include <avr/pgmspace.h>
 
 #define AM_TEXT(s) PSTR(s)
+#include "../../../core/motion/arc_chords.h"
 #include "../../../core/text/gcode_interpreter.h"
 #include "../../../hal/avr/uart.h"
 #include "../../axes/axis_modes.h"
@@ -42,9 +43,9 @@ template <typename... A>
 const am::GcodeAxis AxisTable<AxisSet<A...>>::value[sizeof...(A)] = {
     am::GcodeAxis{A::name, modes_of<A>(0, 0), A::descriptor().steps_per_m * OwnUnits<A>::per_full_step}...};
 
-// Built on first use, so a board without G-code links none of it.
-// No arcs on the chip yet: G2/G3 are refused whole (arcs_not_here).
-using Interpreter = am::GcodeInterpreter<kAxes, false>;
+// Built on first use, so a board without G-code links none of it. A board
+// without arcs (board::kArcs: flash) refuses G2/G3 whole (arcs_not_here).
+using Interpreter = am::GcodeInterpreter<kAxes, board::kArcs>;
 Interpreter& interpreter() {
   static Interpreter instance(AxisTable<board::Axes>::value);
   return instance;
@@ -52,6 +53,15 @@ Interpreter& interpreter() {
 am::GcodeAction<kAxes> action;  // the accepted line's, until execute() has run it
 bool pending;
 int32_t coord_before[kAxes];  // program position before the pending line
+
+// G2/G3: chords in position units, which are steps on the axes of a board
+// with arcs, so every chord end is a step position within half a step of
+// the circle and every chord's sag within kArcSag of it; each chord is a
+// block for the look-ahead planner like a G1 (core/motion/arc_chords.h).
+// A stepped point stays within 1.24 steps of the arc (docs/interpolation.md).
+constexpr float kArcSag = 0.25f;  // steps
+am::ArcChords<kAxes> arc;
+bool arc_started;  // the pending arc's first chord is queued
 
 void report_position() {
   char buf[14];
@@ -73,40 +83,68 @@ void report_position() {
 }
 
 
-// Steps of each axis's current mode from where the planner has it to the
-// target (position units; a coil axis's step is 64 / microsteps of them),
+// Steps of each axis's current mode from where the planner has it to
+// `target` (position units; a coil axis's step is 64 / microsteps of them),
 // rounded to the nearest step: G-code and the direct MOVE agree on where
 // the motors are.
-planner::Move move_of_action() {
+planner::Move move_to(const int32_t (&target)[kAxes]) {
   planner::Move m{};
   for (uint8_t i = 0; i < kAxes; ++i) {
     const int32_t grid = board::Axes::units_for(i, 1, false);
-    const int32_t units = action.target[i] - planner::position(i);
+    const int32_t units = target[i] - planner::position(i);
     m.steps[i] = (units < 0 ? units - grid / 2 : units + grid / 2) / grid;
   }
   return m;
 }
 
-// A G0/G1 (accept() has checked it): one block into the look-ahead ring,
-// its length and direction from the program coordinates.
-bool move() {
-  const planner::Move m = move_of_action();
-  if (planner::mask_of(m.steps) == 0) return true;
-  float delta_mm[kAxes];
-  for (uint8_t i = 0; i < kAxes; ++i) delta_mm[i] = float(action.coord[i] - coord_before[i]) * 1e-4f;
-  // bad_feed cannot come back: the interpreter refuses F <= 0 on a G1.
-  if (path::add(m, delta_mm, float(action.feed) * 1e-4f, action.rapid) == path::Added::full) return false;
-  // A feed beyond what the axes can do runs at what they can: said before
-  // the block moves.
+// A feed beyond what the axes can do runs at what they can: said before the
+// block moves.
+void warn_if_held() {
   const float asked = float(action.feed) * 1e-4f, held = path::held_feed();
-  if (!action.rapid && held < asked * 0.9999f) {
+  if (held < asked * 0.9999f) {
     char buf[14];
     am::format_fixed(buf, int32_t(held + 0.5f), 0);
     hal::uart::write_P(PSTR("warning: F clamped to "));
     hal::uart::write(buf);
     hal::uart::write_P(PSTR(" mm/min\n"));
   }
+}
+
+// A G0/G1 (accept() has checked it): one block into the look-ahead ring,
+// its length and direction from the program coordinates.
+bool move() {
+  const planner::Move m = move_to(action.target);
+  if (planner::mask_of(m.steps) == 0) return true;
+  float delta_mm[kAxes];
+  for (uint8_t i = 0; i < kAxes; ++i) delta_mm[i] = float(action.coord[i] - coord_before[i]) * 1e-4f;
+  // bad_feed cannot come back: the interpreter refuses F <= 0 on a G1.
+  if (path::add(m, delta_mm, float(action.feed) * 1e-4f, action.rapid) == path::Added::full) return false;
+  if (!action.rapid) warn_if_held();
   return true;
+}
+
+// The arc accept() has started: its next chord into the ring if it has
+// room; true after the last. One chord a call, so the main loop's pump
+// (which hands blocks to the engine) runs between chords. A chord's length
+// in mm comes from its steps.
+bool arc_chords() {
+  if (arc.done()) {
+    arc_started = false;
+    return true;
+  }
+  if (!path::room()) return false;
+  int32_t point[kAxes];
+  arc.next(point);
+  const planner::Move m = move_to(point);
+  if (planner::mask_of(m.steps) == 0) return false;  // two chord ends on one step
+  float delta_mm[kAxes];
+  for (uint8_t i = 0; i < kAxes; ++i)
+    delta_mm[i] = float(board::Axes::units_for(i, m.steps[i], false)) * 1000.0f /
+                  float(AxisTable<board::Axes>::value[i].steps_per_m);
+  path::add(m, delta_mm, float(action.feed) * 1e-4f, false);
+  if (!arc_started) warn_if_held();
+  arc_started = true;
+  return false;
 }
 
 }  // namespace
@@ -135,11 +173,20 @@ bool accept(const char* line) {
   // What the machine cannot run is refused now, with the state put back.
   const char* refusal = nullptr;
   if (action.kind == am::GcodeActionKind::move) {
-    switch (planner::check(move_of_action())) {
+    switch (planner::check(move_to(action.target))) {
       case planner::Refusal::position_range: refusal = PSTR("move would leave the position range"); break;
       case planner::Refusal::timer_axis_not_alone: refusal = PSTR("the hardware-timed axis moves alone"); break;
       default: break;
     }
+  }
+  if (board::kArcs && action.kind == am::GcodeActionKind::arc) {
+    int32_t from[kAxes];
+    for (uint8_t i = 0; i < kAxes; ++i) from[i] = before.axis[i].steps;
+    // The interpreter has checked radius and end point; what is left is the
+    // circle within the position range and at most 65535 chords.
+    if (!arc.start(from, action.target, action.plane_axis[0], action.plane_axis[1], action.centre,
+                   action.clockwise, kArcSag))
+      refusal = PSTR("arc beyond the position range or over 65535 chords");
   }
   if (refusal) {
     interpreter().restore(before);
@@ -155,6 +202,9 @@ bool execute() {
   switch (action.kind) {
     case am::GcodeActionKind::move:
       if (!move()) return false;
+      break;
+    case am::GcodeActionKind::arc:  // only on a board with arcs (board::kArcs)
+      if (board::kArcs && !arc_chords()) return false;
       break;
     case am::GcodeActionKind::dwell:
       if (!path::handed_over()) return false;
@@ -177,7 +227,7 @@ bool execute() {
       for (uint8_t i = 0; i < kAxes; ++i)
         if (action.axes & (1u << i)) AxisModes<board::Axes>::set(board::Axes::name_at(i), action.mode[i]);
       break;
-    default:  // none, set_position: nothing for the machine to do (arcs were refused)
+    default:  // none, set_position: nothing for the machine to do
       break;
   }
   pending = false;
