@@ -30,7 +30,7 @@ using Axes = AxisSet<StepDirAxis<'Z', Pin<'C', 0>, Pin<'C', 1>, Pin<'C', 7>, tru
 // is the step clock, the UART talks to the host, Timer0 is the time base
 // (firmware/engine/clock.h; keypad debounce, the lathe program's timeouts):
 // its own, in normal mode with prescaler 64, one tick per 4 us at 16 MHz
-// (8 us at 8 MHz), an overflow interrupt every 16384 cycles (29 of them,
+// (8 us at 8 MHz), an overflow interrupt every 16384 cycles (28 of them,
 // 0.2 % of the CPU); OC0 (PB3, a keypad row) stays a port pin. Timer2 is
 // free. The seed's DC-servo leadscrew drives its L298 from OC1A (PD5), which
 // needs Timer1 for PWM: a servo variant of this board cannot also claim

@@ -58,10 +58,11 @@ __attribute__((section(CLOCK_SECTION))) uint32_t now() {
 
 // The overflow vector: 256 ticks more. SEI is its first instruction, so a
 // step match that comes while it runs waits only for its entry: 4 cycles of
-// response, the JMP (3), SEI (1) and the one instruction the AVR executes
-// after SEI (2), then the step vector nests. The body touches one register
-// and SREG. Cycles from the overflow when nothing carries: 4 + 3 + 22 = 29
-// including RETI; every 256th overflow carries into the second byte (6 more),
+// response, the JMP (3; an RJMP, 2, where the linker's relaxation reaches
+// the handler from the table, as on the ATmega16), SEI (1) and the one
+// instruction the AVR executes after SEI (2), then the step vector nests.
+// The body touches one register and SREG. Cycles from the overflow when
+// nothing carries: 4 + 3 + 22 = 29 including RETI (28 with an RJMP); every 256th overflow carries into the second byte (6 more),
 // every 65536th into the third (4 more again).
 ISR(HAL_CLOCK_VECT, ISR_NAKED) {
   asm volatile(
