@@ -18,5 +18,5 @@ G1 X10 Y15
 G1 X15 Y10
 G1 Z2 F600        ; pen up
 G0 X0 Y0
-M114
-M84               ; motors off
+M84               ; motors off, once the motion has ended
+M114              ; where they are (M114 does not wait for the motion)

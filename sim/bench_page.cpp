@@ -123,7 +123,8 @@ std::string markdown(const std::vector<SizeRow>& sizes, const std::vector<std::v
       "ELF. Stack is the deepest byte the image wrote below its static data, found by\n"
       "painting the free RAM before reset, on a demo-like run (`MOVE <first axis>200\n"
       "F2000 A8000`, then `POS`); the driver board takes no commands, so its stack is\n"
-      "not measured. Percentages are of the part's flash and RAM.\n\n"
+      "not measured. Percentages are of the flash an image may fill (on the Uno the\n"
+      "bootloader keeps 512 bytes) and of the part's RAM.\n\n"
       "| image | MCU | clock | flash (B) | of flash | RAM (B) | of RAM | stack (B) | of RAM | RAM + stack |\n"
       "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (size_t i = 0; i < sizes.size(); ++i) {

@@ -103,6 +103,15 @@ class LineDda {
     remaining_ = uint32_t(events_) - e;
   }
 
+  // Steps axis i has made after event e (0 <= e <= events()): p_i(e) of
+  // the contract, in closed form (64-bit; for the main loop, which counts
+  // where the motors are while the interrupt steps).
+  __attribute__((noinline)) uint32_t steps_after(uint8_t axis, uint32_t e) const {
+    const uint64_t n_events = uint32_t(events_);
+    if (n_events == 0) return 0;
+    const uint64_t h = phase_ == DdaPhase::nearest ? n_events / 2 : 0;
+    return uint32_t((uint64_t(e) * uint32_t(count_[axis]) + h) / n_events);
+  }
   uint32_t events() const { return uint32_t(events_); }
   uint32_t remaining() const { return remaining_; }
   bool finished() const { return remaining_ == 0; }

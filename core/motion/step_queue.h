@@ -82,6 +82,7 @@ class StepQueue {
   // Consumer side: the oldest segment, valid while !empty().
   StepSegment& front() { return slots_[tail_ & (Size - 1)]; }
   uint8_t tail() const { return tail_; }
+  uint8_t head() const { return head_; }
   // The slot that ring index `index` (any value; it wraps) refers to.
   const StepSegment* slot(uint8_t index) const { return &slots_[index & (Size - 1)]; }
   void pop() { tail_ = uint8_t(tail_ + 1); }

@@ -3,6 +3,7 @@
 #include "../../core/motion/path_planner.h"
 #include "../../core/motion/trapezoid.h"
 #include "clock.h"
+#include "odometer.h"
 #include "step_engine.h"
 
 namespace path {
@@ -83,10 +84,15 @@ bool take_now() {
 
 void begin(const am::TrapezoidBlock& b, const planner::Steps& steps) {
   const uint8_t mask = planner::mask_of(steps);
-  if (mask & (mask - 1)) engine::begin_block(serial)->start(steps);
+  engine::Dda* dda = nullptr;
+  if (mask & (mask - 1)) {
+    dda = engine::begin_block(serial);
+    dda->start(steps);
+  }
   runs.start(b, board::kStepTimerHz);
   axis_mask = mask;
   dir_mask = planner::dirs_of(steps);
+  odometer::taken(steps, mask, dir_mask, b.events, dda, serial);
   exit_moving = b.exit > 0;
   generating = true;
 }
@@ -185,6 +191,7 @@ void pump() {
     am::StepSegment s = am::StepSegment::make(r.interval, r.count, axis_mask, dir_mask);
     s.block = serial;
     engine::push(s);
+    odometer::queued(r.count);
   }
   // From rest the engine starts on a full queue, or on all there is for now.
   if (engine::queue_full() || !generating) engine::start();

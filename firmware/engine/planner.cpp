@@ -1,9 +1,12 @@
 #include "planner.h"
 
+#include "odometer.h"
+
 namespace planner {
 namespace {
 
 int32_t positions[board::Axes::count];
+uint32_t counted[board::Axes::count];  // steps counted in, as the odometer counts them out
 
 uint32_t magnitude(int32_t steps) { return steps < 0 ? uint32_t(-(steps + 1)) + 1u : uint32_t(steps); }
 
@@ -87,9 +90,19 @@ uint8_t clamp(const Move& move, Ramp& ramp) {
 }
 
 void count(const Move& move, bool at_rest) {
-  for (uint8_t i = 0; i < board::Axes::count; ++i) positions[i] += board::Axes::units_for(i, move.steps[i], at_rest);
+  for (uint8_t i = 0; i < board::Axes::count; ++i) {
+    positions[i] += board::Axes::units_for(i, move.steps[i], at_rest);
+    counted[i] += uint32_t(move.steps[i]);
+  }
 }
 
 int32_t position(uint8_t axis) { return positions[axis]; }
+
+void positions_now(int32_t (&units)[board::Axes::count]) {
+  uint32_t made[board::Axes::count];
+  odometer::now(made);
+  for (uint8_t i = 0; i < board::Axes::count; ++i)
+    units[i] = positions[i] - board::Axes::units_for(i, int32_t(counted[i] - made[i]), false);
+}
 
 }  // namespace planner

@@ -14,9 +14,10 @@
 //   count() adds a queued move into the positions, in each axis's position
 //   units (steps; 1/64 full step for coil-driven axes, so moves in different
 //   excitation modes add up): what position() reports once the engine is
-//   idle is where the motors are. at_rest: nothing was moving or queued when
-//   the move was accepted (a coil axis's first step after a mode change may
-//   be a partial one).
+//   idle is where the motors are; positions_now() is where they are while
+//   they move. at_rest: nothing was moving or queued when the move was
+//   accepted (a coil axis's first step after a mode change may be a partial
+//   one).
 #pragma once
 #include <stdint.h>
 
@@ -53,5 +54,11 @@ uint8_t dirs_of(const Steps& steps);
 
 void count(const Move& move, bool at_rest);
 int32_t position(uint8_t axis);
+// Where the motors are now, in the same units, while they move: position()
+// less the steps counted but not yet made (firmware/engine/odometer.h), one
+// instant for every axis. At rest it is position(). A coil axis's
+// unfinished move from rest may be off by the partial first step it has
+// not made yet (less than one step).
+void positions_now(int32_t (&units)[board::Axes::count]);
 
 }  // namespace planner

@@ -173,6 +173,24 @@ Dda* begin_block(uint8_t& serial) {
 
 bool busy() { return running || !step_queue.empty(); }
 
+Progress progress() {
+  // No lock: the Uno's 160 kHz fast path has no cycles to spare for one.
+  // Read again when a segment ended or step_remaining changed meanwhile.
+  for (;;) {
+    const uint8_t tail = step_queue.tail();
+    const bool run = running;
+    const uint16_t remaining = step_remaining;
+    if (tail != step_queue.tail() || remaining != step_remaining) continue;
+    return Progress{tail, run ? uint16_t(step_queue.slot(tail)->count - 1u - remaining) : uint16_t(0)};
+  }
+}
+
+uint8_t head() { return step_queue.head(); }
+
+const am::StepSegment& segment(uint8_t index) { return *step_queue.slot(index); }
+
+const Dda& block(uint8_t serial) { return blocks[serial & (kBlockRing - 1)]; }
+
 bool push(am::StepSegment segment) {
   if (step_queue.full()) return false;
   // The fast path switches to a segment by itself only where it continues

@@ -45,6 +45,20 @@ using Dda = am::LineDda<board::Axes::count>;
 bool block_available();
 Dda* begin_block(uint8_t& serial);
 
+// For counting positions as the interrupt steps (firmware/engine/odometer.h):
+// the ring index of the segment the interrupt runs (every segment before it
+// is finished; while stopped, every queued one is) and how many steps of it
+// it has made, read at one instant; the ring index after the newest
+// segment; a queued segment by ring index; a block's interpolator by serial.
+struct Progress {
+  uint8_t tail;
+  uint16_t made;  // of the segment at `tail`; 0 while stopped
+};
+Progress progress();
+uint8_t head();
+const am::StepSegment& segment(uint8_t index);
+const Dda& block(uint8_t serial);
+
 void init();
 bool push(am::StepSegment segment);
 void start();

@@ -465,12 +465,18 @@ struct CostCase {
 };
 
 // Software step edges only: a timer-pulsed edge (Uno Z) is made by the
-// compare match and cannot be late (tests/sim/test_step_timing.cpp).
+// compare match and cannot be late (tests/sim/test_step_timing.cpp). Each
+// rate is near the axis's top and its interval is chosen so that the
+// overflow lands on every phase of it, 8 or 16 cycles apart (the phase moves
+// by the overflow period modulo the interval, 384 of 400 or 1000 cycles, 48
+// of 1000 on the Uno), and so some step interrupts meet the vector whatever
+// the start-up time: with an interval of 800 the phases are 32 cycles apart,
+// wider than the vector, and a build can miss it altogether.
 const CostCase kCosts[] = {
-    {"uno", 8, "MOVE X6000 F20000 A300000", 'X', 6000, 20000, 300000},
+    {"uno", 8, "MOVE X6000 F16000 A300000", 'X', 6000, 16000, 300000},
     {"m32", 64, "MOVE X40000 F40000 A800000", 'X', 40000, 40000, 800000},
-    {"m16", 64, "MOVE Z20000 F20000 A800000", 'Z', 20000, 20000, 800000},
-    {"m16-8mhz", 64, "MOVE Z10000 F10000 A800000", 'Z', 10000, 10000, 800000},
+    {"m16", 64, "MOVE Z16000 F16000 A800000", 'Z', 16000, 16000, 800000},
+    {"m16-8mhz", 64, "MOVE Z8000 F8000 A800000", 'Z', 8000, 8000, 800000},
 };
 
 }  // namespace

@@ -72,6 +72,7 @@ TEST(Gcode, ASlicerStyleProgramEndsExactlyOnItsTargets) {
   y -= 25400;
   lines.push_back("G1 Z1.3 F600");
   z = 13000;
+  lines.push_back("WAIT");  // M114's counts are where the motors are now: after the motion
   lines.push_back("M114");
   e_steps += steps_of(e);
 
@@ -109,13 +110,13 @@ TEST(Gcode, RefusedLinesAreAnsweredOnceAndChangeNothing) {
       {"G1 X300000", "error: number out of range"},
       {"G1 X1 (open", "error: comment not closed"},
   };
-  std::vector<std::string> lines = {"G21", "G90", "G1 X1 Y2 F600", "M114"};
+  std::vector<std::string> lines = {"G21", "G90", "G1 X1 Y2 F600", "WAIT", "M114"};
   for (const auto& b : bad) lines.push_back(b.first);
   lines.push_back("M114");
   auto m = simtest::run("m32", lines, 20);
   const std::vector<sim::Response>& r = m->serial().responses();
   ASSERT_EQ(r.size(), lines.size());
-  for (size_t i = 0; i < bad.size(); ++i) EXPECT_EQ(r[4 + i].answer, bad[i].second) << bad[i].first;
+  for (size_t i = 0; i < bad.size(); ++i) EXPECT_EQ(r[5 + i].answer, bad[i].second) << bad[i].first;
   const std::vector<std::string> msgs = m->serial().messages();
   ASSERT_EQ(msgs.size(), 2u);
   EXPECT_EQ(msgs[0], msgs[1]);
@@ -162,7 +163,7 @@ TEST(Gcode, TargetsMeanTheSameInEveryExcitationModeAndBesideMove) {
   // Uno shield X: 25 full steps per mm. In 16 microsteps a G-code millimetre
   // is still 25 full steps (400 microsteps); a MOVE in between moves the
   // motor, and the next G-code target is reached from where it really is.
-  auto m = simtest::run("uno", {"M350 X16", "G1 X1 F60", "MOVE X80", "G1 X2 F60", "M114", "POS"}, 60);
+  auto m = simtest::run("uno", {"M350 X16", "G1 X1 F60", "MOVE X80", "G1 X2 F60", "POS", "M114"}, 60);
   const std::vector<sim::Response>& r = m->serial().responses();
   ASSERT_EQ(r.size(), 6u);
   for (const sim::Response& x : r) EXPECT_EQ(x.answer, "ok") << x.line;
@@ -170,7 +171,7 @@ TEST(Gcode, TargetsMeanTheSameInEveryExcitationModeAndBesideMove) {
   EXPECT_EQ(m->axis('X')->steps(), 50.0);
   const std::vector<std::string> msgs = m->serial().messages();
   ASSERT_EQ(msgs.size(), 2u);
-  EXPECT_NE(msgs[0].find("X:2.0000"), std::string::npos) << msgs[0];
-  EXPECT_NE(msgs[0].find("Count X:50 "), std::string::npos) << msgs[0];
-  EXPECT_NE(msgs[1].find("X:50 "), std::string::npos) << msgs[1];
+  EXPECT_NE(msgs[0].find("X:50 "), std::string::npos) << msgs[0];  // POS, at rest
+  EXPECT_NE(msgs[1].find("X:2.0000"), std::string::npos) << msgs[1];
+  EXPECT_NE(msgs[1].find("Count X:50 "), std::string::npos) << msgs[1];
 }

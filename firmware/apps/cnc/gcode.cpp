@@ -72,12 +72,15 @@ void report_position() {
     am::format_fixed(buf, interpreter().state().axis[i].coord, 4);
     hal::uart::write(buf);
   }
+  // Where the motors are at this instant, moving or not.
+  int32_t now[kAxes];
+  planner::positions_now(now);
   hal::uart::write_P(PSTR(" Count"));
   for (uint8_t i = 0; i < kAxes; ++i) {
     hal::uart::write(' ');
     hal::uart::write(uint8_t(board::Axes::name_at(i)));
     hal::uart::write(':');
-    reply::position(planner::position(i), board::Axes::units_per_full_step_at(i));
+    reply::position(now[i], board::Axes::units_per_full_step_at(i));
   }
   hal::uart::write('\n');
 }
