@@ -14,12 +14,16 @@ namespace {
 constexpr uint8_t kTimerAxes = board::Axes::timer_mask;
 using Queue = am::StepQueue<kQueueSize>;
 
-// The timer-pulsed STEP ends at the FOC strobe below, 20 cycles after its
-// match without padding (4 response + 3 JMP + 13 in the vector); the board
-// asks for kTimerPulseCycles. Three cycles per turn of the padding loop.
-constexpr uint8_t kPulsePathCycles = 20;
+// The timer-pulsed STEP ends at the FOC strobe below, 24 cycles after its
+// match without padding (4 response + 3 JMP + 17 in the vector); the board
+// asks for kTimerPulseCycles. Three cycles per turn of the padding loop. A
+// segment's last step ends its pulse later, after the next segment's
+// period is set (36 cycles after the match at the earliest, when nothing is
+// chained; 51 when the next segment is): it needs no padding.
+constexpr uint8_t kPulsePathCycles = 24;
 constexpr uint8_t kPulsePadTurns =
     board::kTimerPulseCycles > kPulsePathCycles ? (board::kTimerPulseCycles - kPulsePathCycles + 2) / 3 : 0;
+static_assert(board::kTimerPulseCycles <= 36, "the fast path's segment switch ends its pulse 36 cycles after the match");
 
 // The layout facts the assembly below relies on.
 static_assert(offsetof(am::StepSegment, count) == 0, "segment layout");
@@ -223,32 +227,41 @@ void start() {
 // its calls may clobber. At a segment's last step it takes the next segment
 // straight from the ring if that one is marked `chain` (it continues the same
 // axis in the same direction with no long interval): the new compare lands
-// 69 cycles after the match on the Uno (2 us pulse), 31 before the next
-// match at 160 kHz. Every other case restores the registers it used and
-// jumps to a C handler, which then runs exactly as if it were the vector.
+// 45 cycles after the match, 60 before the next match at 160 kHz, and only
+// then does the step's pulse end (51 cycles: no padding), so the whole
+// switch takes about 96 cycles. The trapezoid's parts can be one step long
+// (two of them back to back at a run's end), and a switch that took longer
+// than the interval would start the next one late until a compare is
+// missed: a step the pins never make. Every other case ends the pulse,
+// restores the registers it used and jumps to a C handler, which then runs
+// exactly as if it were the vector.
 ISR(TIMER1_COMPA_vect, ISR_NAKED) {
   asm volatile(
       "push r24\n\t"                    // 2   9
       "in r24, __SREG__\n\t"            // 1  10
       "push r24\n\t"                    // 2  12
+      ".if %[timer_axis]\n\t"            //    (a board without one has no fast path)
+      "lds r24, step_fast\n\t"          // 2  14
+      "cpi r24, 2\n\t"                  // 1  15
+      "breq 4f\n\t"                     // 1 / 2 taken (17): the segment's last step
+      ".endif\n\t"
       // A match that raised STEP: end the pulse now, whatever comes next.
-      "lds r24, step_armed\n\t"         // 2  14
-      "tst r24\n\t"                     // 1  15
-      "breq 3f\n\t"                     // 1  16
-      "ldi r24, %[clear]\n\t"           // 1  17
-      "sts %[tccr1a], r24\n\t"          // 2  19
+      "lds r24, step_armed\n\t"         // 2  18
+      "tst r24\n\t"                     // 1  19
+      "breq 3f\n\t"                     // 1  20
+      "ldi r24, %[clear]\n\t"           // 1  21
+      "sts %[tccr1a], r24\n\t"          // 2  23
       ".if %[pad]\n\t"
       "ldi r24, %[pad]\n\t"             // 1
       "9: dec r24\n\t"                  // 1
       "brne 9b\n\t"                     // 2, 1 on the last turn: 3 per turn
       ".endif\n\t"
       "ldi r24, %[force]\n\t"           // 1
-      "sts %[force_reg], r24\n\t"       // 2  22 + 3 pad: the pulse ends (35 on the Uno)
+      "sts %[force_reg], r24\n\t"       // 2  26 + 3 pad: the pulse ends (38 on the Uno)
       "3:\n\t"
       "lds r24, step_fast\n\t"          // 2
       "cpi r24, 1\n\t"                  // 1
       "breq 2f\n\t"                     // 1 / 2 taken: a step with more to follow
-      "brcc 4f\n\t"                     // 1 / 2 taken: the segment's last step
       "lds r24, step_coordinated\n\t"
       "tst r24\n\t"
       "brne 6f\n\t"
@@ -279,26 +292,30 @@ ISR(TIMER1_COMPA_vect, ISR_NAKED) {
       "out __SREG__, r24\n\t"           // 1
       "pop r24\n\t"                     // 2
       "reti\n\t"                        // 4
-      // The segment's last step (41 on the Uno).
+      // The segment's last step; its pulse is high.
       "4:\n\t"
-      "push r25\n\t"                    // 2  43
-      "push r30\n\t"                    // 2  45
-      "push r31\n\t"                    // 2  47
-      "lds r24, step_next_index\n\t"    // 2  49
-      "lds r25, step_queue+%[head]\n\t" // 2  51
-      "cp r24, r25\n\t"                 // 1  52
-      "breq 7f\n\t"                     // 1  53  nothing queued
-      "lds r30, step_next\n\t"          // 2  55
-      "lds r31, step_next+1\n\t"        // 2  57
-      "ldd r25, Z+9\n\t"                // 2  59  chain
-      "tst r25\n\t"                     // 1  60
-      "breq 7f\n\t"                     // 1  61
-      "ldd r25, Z+3\n\t"                // 2  63
-      "sts %[ocr1ah], r25\n\t"          // 2  65
-      "ldd r25, Z+2\n\t"                // 2  67
-      "sts %[ocr1al], r25\n\t"          // 2  69  the new period is set
+      "push r25\n\t"                    // 2  19
+      "push r30\n\t"                    // 2  21
+      "push r31\n\t"                    // 2  23
+      "lds r24, step_next_index\n\t"    // 2  25
+      "lds r25, step_queue+%[head]\n\t" // 2  27
+      "cp r24, r25\n\t"                 // 1  28
+      "breq 7f\n\t"                     // 1  29  nothing queued (2, 30)
+      "lds r30, step_next\n\t"          // 2  31
+      "lds r31, step_next+1\n\t"        // 2  33
+      "ldd r25, Z+9\n\t"                // 2  35  chain
+      "tst r25\n\t"                     // 1  36
+      "breq 7f\n\t"                     // 1  37  (2, 38)
+      "ldd r25, Z+3\n\t"                // 2  39
+      "sts %[ocr1ah], r25\n\t"          // 2  41
+      "ldd r25, Z+2\n\t"                // 2  43
+      "sts %[ocr1al], r25\n\t"          // 2  45  the new period is set
+      "ldi r25, %[clear]\n\t"           // 1  46
+      "sts %[tccr1a], r25\n\t"          // 2  48
+      "ldi r25, %[force]\n\t"           // 1  49
+      "sts %[force_reg], r25\n\t"       // 2  51  the pulse ends
       "ldi r25, %[set]\n\t"             // 1
-      "sts %[tccr1a], r25\n\t"          // 2  its pulse is armed
+      "sts %[tccr1a], r25\n\t"          // 2  the next one is armed
       "sts step_queue+%[tail], r24\n\t" // 2  pop the finished segment
       "subi r24, 0xFF\n\t"              // 1
       "sts step_next_index, r24\n\t"    // 2
@@ -325,8 +342,14 @@ ISR(TIMER1_COMPA_vect, ISR_NAKED) {
       "pop r31\n\t"                     // 2
       "pop r30\n\t"                     // 2
       "pop r25\n\t"                     // 2
-      "rjmp 5b\n\t"                     // 2
+      "rjmp 5b\n\t"                     // 2  about 96 to the end of RETI
+      // Nothing to chain: end the pulse (36 cycles at the earliest), then
+      // the C handler takes the queue.
       "7:\n\t"
+      "ldi r25, %[clear]\n\t"           // 1  31
+      "sts %[tccr1a], r25\n\t"          // 2  33
+      "ldi r25, %[force]\n\t"           // 1  34
+      "sts %[force_reg], r25\n\t"       // 2  36  the pulse ends
       "pop r31\n\t"
       "pop r30\n\t"
       "pop r25\n\t"
@@ -339,7 +362,7 @@ ISR(TIMER1_COMPA_vect, ISR_NAKED) {
       [clear] "n"(hal::step_timer::kOc1aClear), [set] "n"(hal::step_timer::kOc1aSet),
       [head] "n"(engine::Queue::head_offset()), [tail] "n"(engine::Queue::tail_offset()),
       [slot] "n"(sizeof(am::StepSegment)), [ring] "n"(sizeof(am::StepSegment) * engine::kQueueSize),
-      [pad] "n"(engine::kPulsePadTurns));
+      [pad] "n"(engine::kPulsePadTurns), [timer_axis] "n"(engine::kTimerAxes != 0));
 }
 
 // The end of a timer-only segment that the vector could not continue: the

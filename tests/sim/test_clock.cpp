@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "board_info.h"
+#include "main_context.h"
 #include "schedule.h"
 #include "sim_fixture.h"
 
@@ -181,78 +182,22 @@ class Probe {
   uint64_t step_pending_ = 0, clock_in_ = 0, step_in_ = 0, nested_ = 0;
 };
 
-// Calls the image's clock::now() on the simulated CPU from wherever the main
-// loop is, between two of its instructions where an interrupt could enter
-// (run_to_main(): the stack pointer is whole there, not halfway through a
-// prologue's SPH/SPL update, which runs with I clear and sets SPL in the one
-// instruction after it restores I), as a CALL there would (without the
-// CALL's own 4 cycles), and runs the chip, interrupts and all, until it has
-// returned.
-// With `interrupts_off` the call runs with I clear, as from a cli section
-// (no handler runs meanwhile). The main loop's registers and SREG are put
-// back afterwards: the call clobbers what the ABI lets it, which the
-// interrupted code did not expect, and nothing else can have changed them
-// (handlers restore theirs).
+// A call of the image's clock::now() from the main loop's context
+// (main_context.h): the ticks it returned and the cycles it spanned.
 struct NowCall {
   uint32_t ticks;
-  uint64_t start, end;  // the cycles the call spanned
+  uint64_t start, end;
 };
 
-bool main_with_interrupts_on(avr_t* avr) { return avr->interrupts.running_ptr == 0 && avr->sreg[S_I]; }
-
 NowCall call_now(sim::Machine& m, uint32_t now_byte_address, bool interrupts_off = false) {
-  avr_t* avr = m.avr();
-  EXPECT_TRUE(main_with_interrupts_on(avr)) << "not between two main-loop instructions";
-  uint8_t regs[32], sreg[8];
-  std::memcpy(regs, avr->data, sizeof regs);
-  std::memcpy(sreg, avr->sreg, sizeof sreg);
-  if (interrupts_off) avr->sreg[S_I] = 0;
-  const avr_flashaddr_t pc = avr->pc;
-  const uint16_t sp = uint16_t(avr->data[R_SPL] | avr->data[R_SPH] << 8);
-  // Push the return address as CALL does: the word address, low byte first,
-  // the stack growing down.
-  uint32_t ret = pc >> 1;
-  for (int i = 0; i < avr->address_size; ++i, ret >>= 8) avr->data[sp - i] = uint8_t(ret);
-  const uint16_t sp_in = uint16_t(sp - avr->address_size);
-  avr->data[R_SPL] = uint8_t(sp_in);
-  avr->data[R_SPH] = uint8_t(sp_in >> 8);
-  avr->pc = now_byte_address;
-  NowCall c;
-  c.start = m.cycles();
-  const sim::RunEnd end = m.run(
-      [&] {
-        return avr->pc == pc && avr->interrupts.running_ptr == 0 &&
-               uint16_t(avr->data[R_SPL] | avr->data[R_SPH] << 8) == sp;
-      },
-      200000);
-  EXPECT_EQ(end, sim::RunEnd::done) << "clock::now() did not return";
-  c.end = m.cycles();
-  c.ticks = uint32_t(avr->data[22]) | uint32_t(avr->data[23]) << 8 | uint32_t(avr->data[24]) << 16 |
-            uint32_t(avr->data[25]) << 24;
-  std::memcpy(avr->data, regs, sizeof regs);
-  std::memcpy(avr->sreg, sreg, sizeof sreg);
-  return c;
+  const simtest::MainCall c = simtest::call_in_main(m, now_byte_address, interrupts_off);
+  return NowCall{c.result, c.start, c.end};
 }
 
 uint32_t now_address(const std::string& elf) {
   const sim::ElfSymbol s = sim::find_symbol(elf, "_ZN5clock3nowEv");
   EXPECT_TRUE(s.found) << elf << " carries no clock::now()";
   return s.value;
-}
-
-// Runs until `cycle` has come and the CPU is in the main loop, at a point
-// where an interrupt could enter: I set, and already set before the last
-// instruction (the one after SEI, OUT SREG or RETI takes no interrupt).
-bool run_to_main(sim::Machine& m, uint64_t cycle, uint64_t budget) {
-  bool was_on = false;
-  return m.run(
-             [&] {
-               const bool on = main_with_interrupts_on(m.avr());
-               const bool ok = m.cycles() >= cycle && on && was_on;
-               was_on = on;
-               return ok;
-             },
-             budget) == sim::RunEnd::done;
 }
 
 uint64_t next_random(uint64_t& state) {
@@ -321,7 +266,7 @@ void check_clock_under_load(const ImageCase& c) {
       target = wrap - (k % 64);
     }
     ++k;
-    if (!run_to_main(m, target, budget)) break;
+    if (!simtest::run_to_main(m, target, budget)) break;
     if (m.serial().finished()) break;
     calls.push_back(call_now(m, now_at));
   }
@@ -337,7 +282,7 @@ void check_clock_under_load(const ImageCase& c) {
   for (int j = 0; j < 192; ++j) {
     uint64_t wrap = probe.wraps.back() + period;
     while (wrap < m.cycles() + 70) wrap += period;
-    ASSERT_TRUE(run_to_main(m, wrap - uint64_t(j % 64), budget));
+    ASSERT_TRUE(simtest::run_to_main(m, wrap - uint64_t(j % 64), budget));
     calls.push_back(call_now(m, now_at, true));
   }
 
@@ -391,9 +336,9 @@ TEST(Clock, StartsAtBootAndCountsWhileIdle) {
     Probe probe(m, elf);
     ASSERT_EQ(m.run([&] { return m.serial().banner_seen(); }, uint64_t(m.f_cpu())), sim::RunEnd::done);
     const uint64_t P = c.prescaler;
-    ASSERT_TRUE(run_to_main(m, m.cycles() + 1000, 100000));
+    ASSERT_TRUE(simtest::run_to_main(m, m.cycles() + 1000, 100000));
     const NowCall a = call_now(m, now_address(elf));
-    ASSERT_TRUE(run_to_main(m, m.cycles() + m.f_cpu() / 10, m.f_cpu()));
+    ASSERT_TRUE(simtest::run_to_main(m, m.cycles() + m.f_cpu() / 10, m.f_cpu()));
     const NowCall b = call_now(m, now_address(elf));
     // 0.1 s later by the cycle counter: ticks = cycles / P, within the
     // calls' own length.
@@ -494,7 +439,7 @@ TEST(Clock, CostsTheStepPathOnlyTheOverflowVectorsEntry) {
       ASSERT_EQ(m.run([&] { return m.serial().banner_seen(); }, uint64_t(m.f_cpu())), sim::RunEnd::done);
       const size_t idle_from = probe.clock_entries.size();
       const uint64_t idle_cycles0 = probe.clock_exclusive;
-      ASSERT_TRUE(run_to_main(m, m.cycles() + uint64_t(m.f_cpu()) / 20, m.f_cpu()));
+      ASSERT_TRUE(simtest::run_to_main(m, m.cycles() + uint64_t(m.f_cpu()) / 20, m.f_cpu()));
       const size_t idle_n = probe.clock_entries.size() - idle_from;
       ASSERT_GT(idle_n, 10u);
       per_overflow = double(probe.clock_exclusive - idle_cycles0) / double(idle_n);

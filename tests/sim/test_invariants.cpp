@@ -206,11 +206,12 @@ TEST(Invariants, M16Uln2003) { check_axis({"m16", 'U', nullptr, 2, 1, kSoftwareJ
 TEST(Invariants, M16At8MHzStepDir) { check_axis({"m16-8mhz", 'Z', nullptr, 1, 1, kSoftwareJitter}, 10, 80); }
 
 TEST(Invariants, TimerPulseWidthStaysWithinItsBoundsUnderTraffic) {
-  // The hardware pulse rises on the match and ends in the step vector, 35
-  // cycles later on the Uno (the board asks for 32), later by whatever holds
-  // the vector off: here the UART handlers, answering junk lines during
-  // every move (avrmotion-bench sees up to 82). It must end well before the
-  // next match at 160 kHz (100 cycles).
+  // The hardware pulse rises on the match and ends in the step vector, 38
+  // cycles later on the Uno (the board asks for 32), 51 at a segment's last
+  // step (it ends after the next segment's period is set), later by whatever
+  // holds the vector off: here the UART handlers, answering junk lines
+  // during every move. It must end early enough before the next match at
+  // 160 kHz (100 cycles) to leave an A4988 its 1 us (16 cycles) of low time.
   sim::Machine m(simtest::image("uno"));
   const auto& step = m.watch_pin('B', 1);
   uint64_t state = 11;
@@ -237,7 +238,7 @@ TEST(Invariants, TimerPulseWidthStaysWithinItsBoundsUnderTraffic) {
               (unsigned long long)longest, rises);
   EXPECT_EQ(rises, commanded);
   EXPECT_GE(shortest, 32u);
-  EXPECT_LE(longest, 80u);  // docs/step-engine.md
+  EXPECT_LE(longest, 84u);  // docs/step-engine.md
 }
 
 TEST(Invariants, AMoveOnAnotherAxisWaitsForTheRunningOne) {
