@@ -125,12 +125,14 @@ RunEnd run_pty(Machine& m, PtyPort& port, const PtyOptions& options, PtyStats& s
       end = RunEnd::done;
       break;
     }
+    // Read whether or not the client is still there: what it wrote before
+    // closing still goes down the line, as a serial port drains on close.
+    for (size_t n; m.serial().relay_backlog() < kBacklog &&
+                   (n = port.read(buf, kBacklog - m.serial().relay_backlog())) > 0;) {
+      m.serial().relay(buf, n);
+      read_total += n;
+    }
     if (connected) {
-      for (size_t n; m.serial().relay_backlog() < kBacklog &&
-                     (n = port.read(buf, kBacklog - m.serial().relay_backlog())) > 0;) {
-        m.serial().relay(buf, n);
-        read_total += n;
-      }
       const size_t w = port.write(out.bytes.data(), out.bytes.size());
       stats.bytes_from_avr += w;
       out.bytes.erase(0, w);

@@ -13,7 +13,7 @@
 //     time (10 bits at the board's baud rate, in simulated cycles), never
 //     faster. At most kBacklog of them wait in the simulator; the rest stay
 //     in the pty, so a client that writes faster than the line blocks, as on
-//     a real port.
+//     a real port. Bytes a client wrote just before it closed still go.
 //   - AVR -> client: written as they come; what the firmware prints while
 //     no client has the port open is counted and dropped (it never blocks
 //     the simulation).

@@ -80,7 +80,7 @@ size_t SerialHost::lines_ok() const {
 std::vector<std::string> SerialHost::errors() const {
   std::vector<std::string> out;
   for (const Response& r : responses_) {
-    if (r.answer != "ok") out.push_back(r.answer);
+    if (!r.answer.empty() && r.answer != "ok") out.push_back(r.answer);  // unanswered lines are no errors
   }
   return out;
 }
