@@ -17,12 +17,12 @@
 //   - read() and write() never block: they move what the kernel takes now.
 //
 // Why not simavr's uart_pty part (examples/parts/uart_pty.c): it talks to the
-// pty from a second thread through FIFOs the simulation also touches, hands
-// every byte it gets to the UART at once (not at the byte rate), cannot tell
-// when a client opens or closes, prints on standard output (where the report
-// goes) and always makes /tmp/simavr-uart0. This class keeps its approach
-// (openpty, a raw master) and leaves the timing to the simulation loop
-// (pty_run.h).
+// pty from a second thread through FIFOs the simulation also touches, fills
+// simavr's UART FIFO as far as XON/XOFF allows instead of pacing the bytes,
+// cannot tell when a client opens or closes, prints on standard output
+// (where the report goes) and always makes /tmp/simavr-uart0. This class
+// keeps its approach (openpty, a raw master) and leaves the timing to the
+// simulation loop (pty_run.h).
 #pragma once
 #include <cstddef>
 #include <string>

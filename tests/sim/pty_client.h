@@ -14,7 +14,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
+#include <cerrno>
 #include <string>
 #include <vector>
 
@@ -124,7 +124,8 @@ class Client {
       if (n > 0) at += size_t(n);
     }
   }
-  // The next line (CR/LF stripped); "<timeout>" after the guard.
+  // The next line (CR/LF stripped); "<timeout>" after the guard, "<closed>"
+  // when the simulator has gone.
   std::string line() {
     for (;;) {
       const size_t nl = in_.find('\n');
@@ -138,6 +139,7 @@ class Client {
       char buf[512];
       const ssize_t n = read(fd_, buf, sizeof buf);
       if (n > 0) in_.append(buf, size_t(n));
+      else if (n == 0 || errno != EAGAIN) return "<closed>";
     }
   }
   // Sends `l` and reads up to its answer ("ok" / "error: ..."): one line in
@@ -146,7 +148,7 @@ class Client {
     send(l + "\n");
     for (;;) {
       const std::string a = line();
-      if (a == "ok" || a.rfind("error", 0) == 0 || a == "<timeout>") return a;
+      if (a == "ok" || a.rfind("error", 0) == 0 || a[0] == '<') return a;
       if (info) info->push_back(a);
     }
   }

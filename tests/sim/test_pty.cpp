@@ -71,7 +71,7 @@ std::string command_shown(Client& c, const std::string& l) {
 
 TEST(Pty, GcodeAndMovesOneLineInFlightThenAReopenGetsAFreshBanner) {
   const std::string dir = temp_path("pty-"), link = dir + "port", report = dir + "report.json";
-  SimProcess sim({"--board", "m32", "--pty", "--link", link, "--speed", "max", "--linger", "2", "--report", report});
+  SimProcess sim({"--board", "m32", "--pty", "--link", link, "--speed", "max", "--linger", "2", "--max-seconds", "30", "--report", report});
   const std::string path = sim.pty_path();
   ASSERT_EQ(path.rfind("/dev/pts/", 0), 0u) << sim.stderr_text();
   char target[256] = {};
@@ -150,15 +150,15 @@ TEST(Pty, GcodeAndMovesOneLineInFlightThenAReopenGetsAFreshBanner) {
 TEST(Pty, ACharacterCountingClientFillsTheReceiveRingAndLosesNothing) {
   constexpr size_t kRx = 64;
   const std::string report = temp_path("pty-count.json");
-  SimProcess sim({"--board", "m32", "--pty", "--speed", "max", "--linger", "0", "--report", report});
+  SimProcess sim({"--board", "m32", "--pty", "--speed", "max", "--linger", "0", "--max-seconds", "30", "--report", report});
   const std::string path = sim.pty_path();
   ASSERT_FALSE(path.empty()) << sim.stderr_text();
   Client c(path);
   ASSERT_EQ(c.line().rfind("avrmotion ", 0), 0u);
   std::vector<std::string> lines{"G21", "G90"};
   for (int i = 1; i <= 60; ++i)
-    lines.push_back("G1 X" + std::to_string(i % 7 * 3) + " Y" + std::to_string(i % 5 * 2) + " F2400");
-  lines.push_back("G1 X12 Y7 F2400");
+    lines.push_back("G1 X0." + std::to_string(i % 7) + " Y0." + std::to_string(i % 5 * 2) + " F2400");
+  lines.push_back("G1 X1.2 Y0.7 F2400");
   std::deque<size_t> in_flight;
   size_t bytes = 0, next = 0, answered = 0, most_lines = 0, most_bytes = 0, errors = 0;
   while (answered < lines.size()) {
@@ -171,7 +171,7 @@ TEST(Pty, ACharacterCountingClientFillsTheReceiveRingAndLosesNothing) {
     most_lines = std::max(most_lines, in_flight.size());
     most_bytes = std::max(most_bytes, bytes);
     const std::string a = c.line();
-    ASSERT_NE(a, "<timeout>");
+    ASSERT_NE(a[0], '<') << a;
     if (a != "ok" && a.rfind("error", 0) != 0) continue;  // warnings, not answers
     errors += a != "ok";
     bytes -= in_flight.front();
@@ -184,7 +184,7 @@ TEST(Pty, ACharacterCountingClientFillsTheReceiveRingAndLosesNothing) {
   EXPECT_GE(most_lines, 3u);  // it did stream
   std::vector<std::string> info;
   EXPECT_EQ(c.command("POS", &info), "ok");
-  const long x = long(12 * steps_per_mm("m32", 'X')), y = long(7 * steps_per_mm("m32", 'Y'));
+  const long x = long(1.2 * steps_per_mm("m32", 'X') + 0.5), y = long(0.7 * steps_per_mm("m32", 'Y') + 0.5);
   ASSERT_EQ(info.size(), 1u);
   EXPECT_EQ(info[0], "pos X:" + std::to_string(x) + " Y:" + std::to_string(y) + " Z:0 E:0");
   c.close_port();
@@ -203,7 +203,7 @@ TEST(Pty, ACharacterCountingClientFillsTheReceiveRingAndLosesNothing) {
 // and every line is answered. Prints the throughput at --speed max.
 TEST(Pty, AFloodIsPacedAtTheByteRateAndSimavrLosesNoByte) {
   const std::string report = temp_path("pty-flood.json");
-  SimProcess sim({"--board", "m32", "--pty", "--speed", "max", "--linger", "0", "--report", report});
+  SimProcess sim({"--board", "m32", "--pty", "--speed", "max", "--linger", "0", "--max-seconds", "30", "--report", report});
   const std::string path = sim.pty_path();
   ASSERT_FALSE(path.empty()) << sim.stderr_text();
   Client c(path);
@@ -232,7 +232,7 @@ TEST(Pty, AFloodIsPacedAtTheByteRateAndSimavrLosesNoByte) {
 TEST(Pty, SimulatedTimeFollowsWallClockTimesTheSpeed) {
   for (const char* speed : {"1", "2"}) {
     const std::string report = temp_path(std::string("pty-pace-") + speed + ".json");
-    SimProcess sim({"--board", "uno", "--pty", "--speed", speed, "--linger", "0", "--report", report});
+    SimProcess sim({"--board", "uno", "--pty", "--speed", speed, "--linger", "0", "--max-seconds", "30", "--report", report});
     const std::string path = sim.pty_path();
     ASSERT_FALSE(path.empty()) << sim.stderr_text();
     Client c(path);
