@@ -27,29 +27,24 @@ PtyPort::PtyPort(const std::string& link) {
   char name[256];
   if (openpty(&master_, &slave, name, nullptr, nullptr) != 0) throw sys_error("cannot open a pseudo-terminal");
   path_ = name;
+  const auto fail = [this](const std::runtime_error& e) {
+    if (inotify_ >= 0) close(inotify_);
+    close(master_);
+    throw e;
+  };
   termios tio;
   const bool raw = tcgetattr(slave, &tio) == 0 && (cfmakeraw(&tio), tcsetattr(slave, TCSANOW, &tio) == 0);
   close(slave);  // from now on the master hangs up exactly while no client has it open
   inotify_ = inotify_init1(IN_NONBLOCK | IN_CLOEXEC);
   if (!raw || fcntl(master_, F_SETFL, fcntl(master_, F_GETFL) | O_NONBLOCK) != 0 || inotify_ < 0 ||
-      inotify_add_watch(inotify_, path_.c_str(), IN_OPEN) < 0) {
-    if (inotify_ >= 0) close(inotify_);
-    close(master_);
-    throw sys_error("cannot set up " + path_);
-  }
+      inotify_add_watch(inotify_, path_.c_str(), IN_OPEN) < 0)
+    fail(sys_error("cannot set up " + path_));
   if (link.empty()) return;
   struct stat st;
-  if (lstat(link.c_str(), &st) == 0 && !S_ISLNK(st.st_mode)) {
-    close(inotify_);
-    close(master_);
-    throw std::runtime_error(link + " exists and is not a symlink: not replacing it");
-  }
+  if (lstat(link.c_str(), &st) == 0 && !S_ISLNK(st.st_mode))
+    fail(std::runtime_error(link + " exists and is not a symlink: not replacing it"));
   unlink(link.c_str());
-  if (symlink(path_.c_str(), link.c_str()) != 0) {
-    close(inotify_);
-    close(master_);
-    throw sys_error("cannot make the link " + link);
-  }
+  if (symlink(path_.c_str(), link.c_str()) != 0) fail(sys_error("cannot make the link " + link));
   link_ = link;
 }
 

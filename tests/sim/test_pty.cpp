@@ -21,6 +21,7 @@
 #include "pty_client.h"
 #include "pty_run.h"
 #include "sim_fixture.h"
+#include "xml_check.h"
 
 namespace {
 
@@ -70,8 +71,9 @@ std::string command_shown(Client& c, const std::string& l) {
 }
 
 TEST(Pty, GcodeAndMovesOneLineInFlightThenAReopenGetsAFreshBanner) {
-  const std::string dir = temp_path("pty-"), link = dir + "port", report = dir + "report.json";
-  SimProcess sim({"--board", "m32", "--pty", "--link", link, "--speed", "max", "--linger", "2", "--max-seconds", "30", "--report", report});
+  const std::string dir = temp_path("pty-"), link = dir + "port", report = dir + "report.json", svg = dir + "run.svg";
+  SimProcess sim({"--board", "m32", "--pty", "--link", link, "--speed", "max", "--linger", "2", "--max-seconds", "30",
+                  "--report", report, "--plot", svg});
   const std::string path = sim.pty_path();
   ASSERT_EQ(path.rfind("/dev/pts/", 0), 0u) << sim.stderr_text();
   char target[256] = {};
@@ -137,9 +139,31 @@ TEST(Pty, GcodeAndMovesOneLineInFlightThenAReopenGetsAFreshBanner) {
   EXPECT_EQ(report_number(json, "", "lines_sent"), 11);
   EXPECT_EQ(report_string(json, "errors"), "[\"error: unknown command\"]");
   EXPECT_EQ(access(link.c_str(), F_OK), -1) << "the link outlived the run";
+  xmlcheck::Parser picture(slurp(svg));  // the picture, as for a file run
+  EXPECT_TRUE(picture.parse()) << picture.error();
+  EXPECT_NE(slurp(svg).find("end: done; 11 lines sent"), std::string::npos);
   std::printf("report: sessions %g, bytes to the AVR %g, from it %g, discarded %g\n",
               report_number(json, "pty", "sessions"), report_number(json, "pty", "bytes_to_avr"),
               report_number(json, "pty", "bytes_from_avr"), report_number(json, "pty", "bytes_discarded"));
+  std::remove(report.c_str());
+  std::remove(svg.c_str());
+}
+
+// Ctrl-C (SIGINT) or SIGTERM ends a session that nobody closes: the report
+// is still written, and the link goes.
+TEST(Pty, ASignalEndsTheRunWithItsReport) {
+  const std::string link = temp_path("pty-sig-port"), report = temp_path("pty-sig.json");
+  SimProcess sim({"--board", "m32", "--pty", "--link", link, "--max-seconds", "30", "--report", report});
+  ASSERT_FALSE(sim.pty_path().empty()) << sim.stderr_text();
+  Client c(link);
+  ASSERT_EQ(c.line().rfind("avrmotion ", 0), 0u);
+  EXPECT_EQ(c.command("MOVE X100 F1000"), "ok");
+  sim.signal(SIGTERM);
+  ASSERT_EQ(sim.wait_exit(), 0) << sim.stderr_text();
+  const std::string json = slurp(report);
+  EXPECT_EQ(report_string(json, "end"), "\"interrupted\"");
+  EXPECT_EQ(report_number(json, "pty", "sessions"), 1);
+  EXPECT_EQ(access(link.c_str(), F_OK), -1);
   std::remove(report.c_str());
 }
 
