@@ -12,8 +12,8 @@
 //     (POLLHUP) exactly while nobody has it open.
 //   - opens() counts the opens of the slave since its last call (inotify
 //     IN_OPEN on the device): a client that closes and opens again between
-//     two looks (printcore does, at once) is still seen as a new open, which
-//     the hangup alone would miss.
+//     two looks (printrun's parity workaround does) is still seen as a new
+//     open, which the hangup alone would miss.
 //   - read() and write() never block: they move what the kernel takes now.
 //
 // Why not simavr's uart_pty part (examples/parts/uart_pty.c): it talks to the
