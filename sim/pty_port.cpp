@@ -37,7 +37,7 @@ PtyPort::PtyPort(const std::string& link) {
   close(slave);  // from now on the master hangs up exactly while no client has it open
   inotify_ = inotify_init1(IN_NONBLOCK | IN_CLOEXEC);
   if (!raw || fcntl(master_, F_SETFL, fcntl(master_, F_GETFL) | O_NONBLOCK) != 0 || inotify_ < 0 ||
-      inotify_add_watch(inotify_, path_.c_str(), IN_OPEN) < 0)
+      inotify_add_watch(inotify_, path_.c_str(), IN_OPEN | IN_CLOSE) < 0)
     fail(sys_error("cannot set up " + path_));
   if (link.empty()) return;
   struct stat st;
@@ -63,6 +63,8 @@ bool PtyPort::client_present() const {
   return poll(&p, 1, 0) >= 0 && !(p.revents & POLLHUP);
 }
 
+// The closes are watched too, only so that open, close, open are three events:
+// inotify merges an event with an identical one still unread before it.
 unsigned PtyPort::opens() {
   unsigned n = 0;
   alignas(inotify_event) char events[1024];

@@ -11,7 +11,8 @@
 //     port keeps no slave descriptor of its own, so the master sees a hangup
 //     (POLLHUP) exactly while nobody has it open.
 //   - opens() counts the opens of the slave since its last call (inotify
-//     IN_OPEN on the device): a client that closes and opens again between
+//     IN_OPEN on the device; opens with no close between them, two clients
+//     at once, count as one): a client that closes and opens again between
 //     two looks (printrun's parity workaround does) is still seen as a new
 //     open, which the hangup alone would miss.
 //   - read() and write() never block: they move what the kernel takes now.

@@ -5,6 +5,7 @@
 // the report's positions against the commanded steps. The tests print the
 // transcripts and figures docs/simulator.md quotes.
 #include <sys/wait.h>
+#include <termios.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -147,6 +148,31 @@ TEST(Pty, GcodeAndMovesOneLineInFlightThenAReopenGetsAFreshBanner) {
               report_number(json, "pty", "bytes_from_avr"), report_number(json, "pty", "bytes_discarded"));
   std::remove(report.c_str());
   std::remove(svg.c_str());
+}
+
+// The port on its own: raw for every client, every open counted (also one
+// that was closed again before anybody looked), a client's going seen.
+TEST(Pty, ThePortIsRawAndCountsEveryOpen) {
+  sim::PtyPort port;
+  EXPECT_EQ(port.opens(), 0u);
+  EXPECT_FALSE(port.client_present());
+  { Client gone(port.path()); }
+  Client c(port.path());
+  ASSERT_TRUE(c.is_open());
+  EXPECT_EQ(port.opens(), 2u);
+  EXPECT_TRUE(port.client_present());
+  const int fd = open(port.path().c_str(), O_RDONLY | O_NOCTTY);  // a third open, to read the settings
+  termios tio{};
+  ASSERT_EQ(tcgetattr(fd, &tio), 0);
+  close(fd);
+  EXPECT_EQ(tio.c_lflag & (ECHO | ICANON | ISIG), 0u);
+  EXPECT_EQ(tio.c_oflag & OPOST, 0u);
+  EXPECT_EQ(tio.c_iflag & (ICRNL | IXON), 0u);
+  EXPECT_EQ(tio.c_cflag & CSIZE, tcflag_t(CS8));
+  EXPECT_EQ(port.opens(), 1u);
+  c.close_port();
+  EXPECT_FALSE(port.client_present());
+  EXPECT_EQ(port.opens(), 0u);
 }
 
 // Ctrl-C (SIGINT) or SIGTERM ends a session that nobody closes: the report
