@@ -31,7 +31,8 @@ void usage() {
                "  --vcd FILE.vcd      trace of pins, interrupts and PWM duties for GTKWave\n"
                "  --vcd-signals LIST  what the trace holds (default board,isr,pwm): board, isr, pwm,\n"
                "                      an axis letter, a pin (PB3), a vector (isr11), a PWM channel (pwm2A)\n"
-               "  --max-seconds S     simulated-time budget (default 120); exit 3 when spent\n"
+               "  --max-seconds S     simulated-time budget (default 120; --pty: none, counted from the\n"
+               "                      first open); exit 3 when spent\n"
                "  --progress          progress on standard error about once a second, and at the end\n"
                "  --pty               the UART as a pseudo-terminal (its path on standard error) instead of\n"
                "                      --input; each open resets the MCU; ends when the client has closed\n"
@@ -56,7 +57,7 @@ int main(int argc, char** argv) {
   std::string elf, input = "-", report, plot, vcd, vcd_signals;
   std::string link, speed_text;
   double max_seconds = 120, linger = 2;
-  bool progress = false, pty = false, input_given = false, linger_given = false;
+  bool progress = false, pty = false, input_given = false, linger_given = false, budget_given = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const auto value = [&]() -> std::string {
@@ -73,7 +74,7 @@ int main(int argc, char** argv) {
     else if (a == "--plot") plot = value();
     else if (a == "--vcd") vcd = value();
     else if (a == "--vcd-signals") vcd_signals = value();
-    else if (a == "--max-seconds") max_seconds = std::atof(value().c_str());
+    else if (a == "--max-seconds") max_seconds = std::atof(value().c_str()), budget_given = true;
     else if (a == "--progress") progress = true;
     else if (a == "--pty") pty = true;
     else if (a == "--link") link = value();
@@ -101,7 +102,9 @@ int main(int argc, char** argv) {
       sim::PtyPort port(link);
       std::cerr << "avrmotion-sim: pty " << port.path() << (link.empty() ? "" : " (link " + link + ")") << std::endl;
       if (!vcd.empty()) trace.reset(new sim::VcdRecorder(machine, vcd, vcd_signals));
-      end = sim::run_pty(machine, port, sim::PtyOptions{speed, linger, budget, progress ? &std::cerr : nullptr},
+      // A session ends when its client leaves: no budget unless one is asked for.
+      const uint64_t pty_budget = budget_given ? budget : 0;
+      end = sim::run_pty(machine, port, sim::PtyOptions{speed, linger, pty_budget, progress ? &std::cerr : nullptr},
                          stats);
     } else {
       std::ifstream file;

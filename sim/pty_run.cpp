@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <csignal>
+#include <limits>
 #include <string>
 #include <thread>
 
@@ -93,7 +94,8 @@ RunEnd run_pty(Machine& m, PtyPort& port, const PtyOptions& options, PtyStats& s
   unsigned first = 0;
   while (!(first = port.opens()) && !g_signal) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   const Clock::time_point first_open = Clock::now();
-  const uint64_t start = m.cycles(), end_cycle = start + options.budget;
+  const uint64_t start = m.cycles();
+  const uint64_t end_cycle = options.budget ? start + options.budget : std::numeric_limits<uint64_t>::max();
   const uint64_t slice = std::max<uint32_t>(1, m.f_cpu() / 1000);  // 1 ms of simulated time
   const uint64_t linger = uint64_t(options.linger_s * m.f_cpu());
   Pacer pacer(m, stats);

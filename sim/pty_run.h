@@ -24,7 +24,7 @@
 //     much it fell behind at worst).
 //   - End: `done` once the client has closed and no client opened the port
 //     again within `linger_s` (simulated, so real-time) seconds;
-//     `budget_spent` after `budget` cycles from the first open;
+//     `budget_spent` after `budget` cycles from the first open (if set);
 //     `cpu_stopped`; `interrupted` on SIGINT or SIGTERM (installed here).
 //     A simavr error throws SimulatorFault, as every run does (machine.h).
 #pragma once
@@ -39,7 +39,7 @@ namespace sim {
 struct PtyOptions {
   double speed = 1;       // simulated seconds per wall-clock second; 0: no pacing
   double linger_s = 2;    // how long after a close a client may reopen
-  uint64_t budget = 0;    // cycles from the first open
+  uint64_t budget = 0;    // cycles from the first open; 0: none
   std::ostream* progress = nullptr;  // progress_line() about once a second
 };
 

@@ -193,6 +193,24 @@ TEST(Pty, ASignalEndsTheRunWithItsReport) {
   std::remove(report.c_str());
 }
 
+// A --max-seconds budget counts from the first open and ends the session.
+TEST(Pty, ABudgetEndsASessionThatGoesOnTooLong) {
+  const std::string report = temp_path("pty-budget.json");
+  SimProcess sim({"--board", "m32", "--pty", "--speed", "max", "--max-seconds", "0.5", "--report", report});
+  const std::string path = sim.pty_path();
+  ASSERT_FALSE(path.empty()) << sim.stderr_text();
+  Client c(path);
+  ASSERT_EQ(c.line().rfind("avrmotion ", 0), 0u);
+  EXPECT_EQ(c.line(), "<closed>");  // nothing more comes until the simulator goes
+  ASSERT_EQ(sim.wait_exit(), 3) << sim.stderr_text();
+  const std::string json = slurp(report);
+  EXPECT_EQ(report_string(json, "end"), "\"timeout\"");
+  const double cycles = report_number(json, "", "cycles");  // 0.5 s at 16 MHz from the open (cycle 0),
+  EXPECT_GE(cycles, 8000000);                                // to within the last instruction
+  EXPECT_LT(cycles, 8000000 + 8);
+  std::remove(report.c_str());
+}
+
 // grbl's streaming protocol: keep as many lines in flight as the sum of
 // their lengths fits the firmware's receive ring (hal/avr/uart.cpp kRxSize:
 // 64 bytes today; grbl senders count against 128, which is issue 9's
