@@ -116,10 +116,8 @@ RunEnd run_pty(Machine& m, PtyPort& port, const PtyOptions& options, PtyStats& s
       stats.sessions += opens;
       pacer.restart(present ? options.speed : 1);
       if (!present) closed_at = m.cycles();
-    } else if (!present && connected) {
+    } else if (!present && connected) {  // gone: what it had not read yet is dropped below
       closed_at = m.cycles();
-      stats.bytes_discarded += out.bytes.size();
-      out.bytes.clear();
       pacer.restart(1);
     }
     connected = present;
