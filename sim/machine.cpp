@@ -116,6 +116,11 @@ Machine::~Machine() {
 
 uint64_t Machine::cycles() const { return avr_->cycle; }
 
+size_t Machine::reset() {
+  avr_reset(avr_);
+  return serial_->on_reset();
+}
+
 const AxisTrace* Machine::axis(char name) const {
   for (const AxisTrace& a : axes_) {
     if (a.name == name) return &a;

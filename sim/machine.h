@@ -56,7 +56,8 @@ struct PwmSample {
   uint16_t duty;
 };
 
-enum class RunEnd { done, budget_spent, cpu_stopped };
+// interrupted: a pty run ended by SIGINT or SIGTERM (pty_run.h).
+enum class RunEnd { done, budget_spent, cpu_stopped, interrupted };
 
 // simavr reports what it could not simulate only as an error-level log line,
 // and runs on: a dropped event ("CYCLE: avr_cycle_timer_insert: ran out of
@@ -85,6 +86,14 @@ class Machine {
   const std::vector<AxisTrace>& axes() const { return axes_; }
   const AxisTrace* axis(char name) const;
   const Latch595Model* latch() const { return latch_.get(); }
+
+  // Resets the MCU as its RESET pin would (the auto-reset of a board whose
+  // host opens the port, pty_run.h): registers, peripherals and pending
+  // events as at power-on, RAM as it was (the startup code clears .bss).
+  // Simulated time, the decoded positions and every measurement go on: the
+  // motors do not move on a reset. Returns the host bytes dropped
+  // (SerialHost::on_reset()).
+  size_t reset();
 
   // Runs until `stop` returns true (checked between instructions), until
   // `budget` more cycles have run, or until the CPU stops.

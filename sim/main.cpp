@@ -1,5 +1,7 @@
 // avrmotion-sim: runs a firmware image in libsimavr, feeds it a command file
-// over its UART and reports what the motors did (docs/simulator-report.md).
+// over its UART, or offers the UART as a pseudo-terminal to a program
+// (--pty, pty_run.h), and reports what the motors did
+// (docs/simulator-report.md, docs/simulator.md).
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
@@ -10,6 +12,7 @@
 #include "machine.h"
 #include "plot.h"
 #include "progress.h"
+#include "pty_run.h"
 #include "report.h"
 #include "vcd.h"
 
@@ -19,6 +22,8 @@ void usage() {
   std::cerr << "usage: avrmotion-sim (--board NAME | --elf FILE) [--input FILE|-] [--report FILE]\n"
                "                     [--plot FILE.svg] [--vcd FILE.vcd [--vcd-signals LIST]]\n"
                "                     [--max-seconds S] [--progress]\n"
+               "       avrmotion-sim (--board NAME | --elf FILE) --pty [--link PATH] [--speed N|max] [--linger S]\n"
+               "                     [--report FILE] [--plot FILE.svg] [--vcd ...] [--max-seconds S] [--progress]\n"
                "  --board NAME        run " AVRMOTION_FIRMWARE_DIR "/avrmotion-NAME.elf (uno, m32, m16, m16-8mhz)\n"
                "  --input FILE        command lines to send (default: standard input); '#' starts a comment\n"
                "  --report FILE       JSON report (default: standard output)\n"
@@ -26,9 +31,16 @@ void usage() {
                "  --vcd FILE.vcd      trace of pins, interrupts and PWM duties for GTKWave\n"
                "  --vcd-signals LIST  what the trace holds (default board,isr,pwm): board, isr, pwm,\n"
                "                      an axis letter, a pin (PB3), a vector (isr11), a PWM channel (pwm2A)\n"
-               "  --max-seconds S     simulated-time budget (default 120); exit 3 when spent\n"
+               "  --max-seconds S     simulated-time budget (default 120; --pty: none, counted from the\n"
+               "                      first open); exit 3 when spent\n"
                "  --progress          progress on standard error about once a second, and at the end\n"
-               "exit: 0 ran to the end, 2 bad usage or image, 3 budget spent, 4 CPU stopped,\n"
+               "  --pty               the UART as a pseudo-terminal (its path on standard error) instead of\n"
+               "                      --input; each open resets the MCU; ends when the client has closed\n"
+               "  --link PATH         also a symlink PATH to the pseudo-terminal\n"
+               "  --speed N|max       simulated time N times wall-clock time while a client is there\n"
+               "                      (default 1); max: as fast as it goes\n"
+               "  --linger S          after a close, wait S s for a client to open it again (default 2)\n"
+               "exit: 0 ran to the end (--pty: the client closed, or SIGINT/SIGTERM), 2 bad usage or image, 3 budget spent, 4 CPU stopped,\n"
                "      5 simavr reported an error (a dropped event: the run is not valid)\n";
 }
 
@@ -43,8 +55,9 @@ std::string strip(const std::string& line) {
 
 int main(int argc, char** argv) {
   std::string elf, input = "-", report, plot, vcd, vcd_signals;
-  double max_seconds = 120;
-  bool progress = false;
+  std::string link, speed_text;
+  double max_seconds = 120, linger = 2;
+  bool progress = false, pty = false, input_given = false, linger_given = false, budget_given = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const auto value = [&]() -> std::string {
@@ -56,51 +69,72 @@ int main(int argc, char** argv) {
     };
     if (a == "--board") elf = std::string(AVRMOTION_FIRMWARE_DIR) + "/avrmotion-" + value() + ".elf";
     else if (a == "--elf") elf = value();
-    else if (a == "--input") input = value();
+    else if (a == "--input") input = value(), input_given = true;
     else if (a == "--report") report = value();
     else if (a == "--plot") plot = value();
     else if (a == "--vcd") vcd = value();
     else if (a == "--vcd-signals") vcd_signals = value();
-    else if (a == "--max-seconds") max_seconds = std::atof(value().c_str());
+    else if (a == "--max-seconds") max_seconds = std::atof(value().c_str()), budget_given = true;
     else if (a == "--progress") progress = true;
+    else if (a == "--pty") pty = true;
+    else if (a == "--link") link = value();
+    else if (a == "--speed") speed_text = value();
+    else if (a == "--linger") linger = std::atof(value().c_str()), linger_given = true;
     else {
       usage();
       return 2;
     }
   }
-  if (elf.empty() || max_seconds <= 0 || (!vcd_signals.empty() && vcd.empty())) {
+  const double speed = speed_text.empty() ? 1 : speed_text == "max" ? 0 : std::atof(speed_text.c_str());
+  const bool pty_only = !link.empty() || !speed_text.empty() || linger_given;
+  if (elf.empty() || max_seconds <= 0 || (!vcd_signals.empty() && vcd.empty()) || (pty && input_given) ||
+      (!pty && pty_only) || speed < 0 || (speed == 0 && speed_text != "max") || linger < 0) {
     usage();
     return 2;
   }
   try {
     sim::Machine machine(elf);
-    std::ifstream file;
-    if (input != "-") {
-      file.open(input);
-      if (!file) throw std::runtime_error("cannot read " + input);
-    }
-    std::istream& in = input == "-" ? std::cin : file;
-    for (std::string line; std::getline(in, line);) {
-      const std::string s = strip(line);
-      if (!s.empty()) machine.serial().add_line(s);
-    }
+    const uint64_t budget = uint64_t(max_seconds * machine.f_cpu());
     std::unique_ptr<sim::VcdRecorder> trace;
-    if (!vcd.empty()) trace.reset(new sim::VcdRecorder(machine, vcd, vcd_signals));
-    const sim::RunEnd end = sim::run_script_with_progress(machine, uint64_t(max_seconds * machine.f_cpu()),
-                                                          progress ? &std::cerr : nullptr);
+    sim::RunEnd end;
+    sim::PtyStats stats;
+    if (pty) {
+      sim::PtyPort port(link);
+      std::cerr << "avrmotion-sim: pty " << port.path() << (link.empty() ? "" : " (link " + link + ")") << std::endl;
+      if (!vcd.empty()) trace.reset(new sim::VcdRecorder(machine, vcd, vcd_signals));
+      // A session ends when its client leaves: no budget unless one is asked for.
+      const uint64_t pty_budget = budget_given ? budget : 0;
+      end = sim::run_pty(machine, port, sim::PtyOptions{speed, linger, pty_budget, progress ? &std::cerr : nullptr},
+                         stats);
+    } else {
+      std::ifstream file;
+      if (input != "-") {
+        file.open(input);
+        if (!file) throw std::runtime_error("cannot read " + input);
+      }
+      std::istream& in = input == "-" ? std::cin : file;
+      for (std::string line; std::getline(in, line);) {
+        const std::string s = strip(line);
+        if (!s.empty()) machine.serial().add_line(s);
+      }
+      if (!vcd.empty()) trace.reset(new sim::VcdRecorder(machine, vcd, vcd_signals));
+      end = sim::run_script_with_progress(machine, budget, progress ? &std::cerr : nullptr);
+    }
     if (trace) trace->finish();
+    const sim::PtyStats* pty_stats = pty ? &stats : nullptr;
     if (report.empty()) {
-      sim::write_report(std::cout, machine, end);
+      sim::write_report(std::cout, machine, end, pty_stats);
     } else {
       std::ofstream out(report);
-      sim::write_report(out, machine, end);
+      sim::write_report(out, machine, end, pty_stats);
     }
-    if (!plot.empty()) sim::write_run_plot(plot, machine, sim::PlotLabel{input == "-" ? "" : input, end});
+    const std::string title = pty ? "pty" : input == "-" ? "" : input;
+    if (!plot.empty()) sim::write_run_plot(plot, machine, sim::PlotLabel{title, end});
     if (end == sim::RunEnd::budget_spent) {
       std::cerr << "avrmotion-sim: simulated-time budget of " << max_seconds << " s spent\n";
       return 3;
     }
-    return end == sim::RunEnd::done ? 0 : 4;
+    return end == sim::RunEnd::done || end == sim::RunEnd::interrupted ? 0 : 4;
   } catch (const sim::SimulatorFault& e) {
     std::cerr << "avrmotion-sim: " << e.what() << "\n";
     return 5;

@@ -12,6 +12,7 @@
 #include "../core/board/descriptor.h"
 #include "motion.h"
 #include "plot_toolpath.h"
+#include "report.h"
 #include "svg_panel.h"
 #include "ticks.h"
 #include "toolpath.h"
@@ -184,9 +185,7 @@ void write_run_plot(const std::string& path, Machine& m, const PlotLabel& label)
   const size_t errors = answered - serial.lines_ok();
   char figures[256];
   std::snprintf(figures, sizeof figures, "%.6g s simulated, end: %s; %zu lines sent, %zu ok, %zu error%s", t_end,
-                label.end == RunEnd::done           ? "done"
-                : label.end == RunEnd::budget_spent ? "timeout"
-                                                    : "cpu_stopped",
+                end_name(label.end),
                 serial.lines_sent(), serial.lines_ok(), errors, errors == 1 ? "" : "s");
   const double y0 = kPad;
   svg << "<text x='" << num(kPad) << "' y='" << num(y0 + 16) << "' font-size='16' font-weight='bold'>" << esc(run)

@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <string>
 
+#include "pty_run.h"
+
 namespace sim {
 
 namespace {
@@ -30,14 +32,6 @@ std::string number(double v) {
   return buf;
 }
 
-const char* end_name(RunEnd end) {
-  switch (end) {
-    case RunEnd::done: return "done";
-    case RunEnd::budget_spent: return "timeout";
-    default: return "cpu_stopped";
-  }
-}
-
 size_t lines_answered(const SerialHost& serial) {
   size_t n = 0;
   for (const Response& r : serial.responses()) n += !r.answer.empty();
@@ -45,6 +39,16 @@ size_t lines_answered(const SerialHost& serial) {
 }
 
 }  // namespace
+
+const char* end_name(RunEnd end) {
+  switch (end) {
+    case RunEnd::done: return "done";
+    case RunEnd::budget_spent: return "timeout";
+    case RunEnd::interrupted: return "interrupted";
+    case RunEnd::cpu_stopped: break;
+  }
+  return "cpu_stopped";
+}
 
 std::string progress_line(Machine& m) {
   const SerialHost& serial = m.serial();
@@ -60,7 +64,7 @@ std::string progress_line(Machine& m) {
   return buf;
 }
 
-void write_report(std::ostream& out, Machine& m, RunEnd end) {
+void write_report(std::ostream& out, Machine& m, RunEnd end, const PtyStats* pty) {
   const am::BoardDescriptor& b = m.board();
   SerialHost& serial = m.serial();
   out << "{\n";
@@ -111,7 +115,16 @@ void write_report(std::ostream& out, Machine& m, RunEnd end) {
   }
   out << "\n  },\n";
   out << "  \"stack_bytes\": " << m.stack_bytes() << ",\n";
-  out << "  \"starvations\": " << m.starvations() << "\n";
+  out << "  \"starvations\": " << m.starvations() << (pty ? ",\n" : "\n");
+  if (pty) {
+    out << "  \"pty\": {\"sessions\": " << pty->sessions << ", \"bytes_to_avr\": " << pty->bytes_to_avr
+        << ", \"bytes_from_avr\": " << pty->bytes_from_avr << ", \"bytes_discarded\": " << pty->bytes_discarded
+        << ", \"bytes_dropped_at_reset\": " << pty->bytes_dropped_at_reset
+        << ", \"min_byte_interval_cycles\": " << pty->min_byte_interval
+        << ", \"wall_seconds\": " << number(pty->wall_seconds)
+        << ", \"simulated_seconds\": " << number(pty->simulated_seconds)
+        << ", \"max_lag_seconds\": " << number(pty->max_lag_s) << "}\n";
+  }
   out << "}\n";
 }
 

@@ -8,7 +8,15 @@
 
 namespace sim {
 
-void write_report(std::ostream& out, Machine& m, RunEnd end);
+struct PtyStats;
+
+// `pty` (a --pty run) adds the "pty" object: sessions, bytes each way, the
+// pacing figures (docs/simulator-report.md).
+void write_report(std::ostream& out, Machine& m, RunEnd end, const PtyStats* pty = nullptr);
+
+// The report's name for how a run ended ("done", "timeout", "cpu_stopped",
+// "interrupted"); the picture's title uses it too.
+const char* end_name(RunEnd end);
 
 // The run's figures as one line, for --progress: the same simulated time
 // (the report's "seconds", same digits), lines sent / answered / ok / errors

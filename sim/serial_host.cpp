@@ -29,8 +29,41 @@ void SerialHost::send_raw(const std::string& bytes) {
 uint64_t SerialHost::on_raw_slot(avr_t*, uint64_t when, void* self) {
   auto* host = static_cast<SerialHost*>(self);
   if (host->raw_pos_ >= host->raw_.size()) return 0;
-  avr_raise_irq(host->input_irq_, uint8_t(host->raw_[host->raw_pos_++]));
-  return host->raw_pos_ < host->raw_.size() ? when + host->byte_cycles_ : 0;
+  const char c = host->raw_[host->raw_pos_++];
+  if (host->last_byte_cycle_ && (!host->min_byte_interval_ || when - host->last_byte_cycle_ < host->min_byte_interval_))
+    host->min_byte_interval_ = when - host->last_byte_cycle_;
+  host->last_byte_cycle_ = when;
+  avr_raise_irq(host->input_irq_, uint8_t(c));
+  if (host->relay_) host->relay_byte(c, when);
+  if (host->raw_pos_ < host->raw_.size()) return when + host->byte_cycles_;
+  host->raw_.clear();  // drained: the queue starts again from empty
+  host->raw_pos_ = 0;
+  return 0;
+}
+
+// A line ends at CR or LF; an empty one (the LF of a CRLF) is no line, as
+// for the firmware (docs/protocol.md).
+void SerialHost::relay_byte(char c, uint64_t cycle) {
+  if (c != '\n' && c != '\r') {
+    if (relay_line_.empty()) relay_line_cycle_ = cycle;
+    relay_line_ += c;
+    return;
+  }
+  if (relay_line_.empty()) return;
+  ++lines_sent_;
+  responses_.push_back({relay_line_, "", relay_line_cycle_, 0});
+  relay_line_.clear();
+}
+
+size_t SerialHost::on_reset() {
+  const size_t dropped = raw_.size() - raw_pos_;
+  raw_.clear();
+  raw_pos_ = 0;
+  relay_line_.clear();
+  partial_.clear();
+  next_answer_ = responses_.size();
+  last_byte_cycle_ = 0;  // a new session: the gap across the reset is no byte interval
+  return dropped;
 }
 
 const std::string& SerialHost::banner() const {
@@ -47,7 +80,7 @@ size_t SerialHost::lines_ok() const {
 std::vector<std::string> SerialHost::errors() const {
   std::vector<std::string> out;
   for (const Response& r : responses_) {
-    if (r.answer != "ok") out.push_back(r.answer);
+    if (!r.answer.empty() && r.answer != "ok") out.push_back(r.answer);  // unanswered lines are no errors
   }
   return out;
 }
@@ -77,11 +110,18 @@ void SerialHost::on_output(avr_irq_t*, uint32_t value, void* self) {
 void SerialHost::on_line(const std::string& line) {
   const bool first = received_.empty();
   received_.push_back(line);
+  const bool answer = line == "ok" || line.rfind("error", 0) == 0;
+  if (relay_) {
+    if (answer && next_answer_ < responses_.size()) {
+      responses_[next_answer_].answer = line;
+      responses_[next_answer_++].answer_cycle = avr_->cycle;
+    }
+    return;
+  }
   if (first) {
     send_next();  // the banner: the firmware is ready
     return;
   }
-  const bool answer = line == "ok" || line.rfind("error", 0) == 0;
   if (!answer || !awaiting_answer_) return;
   awaiting_answer_ = false;
   if (wait_sent_) {

@@ -6,6 +6,12 @@
 // The first line the firmware prints is its banner; nothing is sent before
 // it. After the last script line the host sends WAIT (not counted as a script
 // line), so finished() becomes true only once all motion has ended.
+//
+// Relay mode (avrmotion-sim --pty, pty_run.h): the lines come from a client
+// program instead of a script. The host then sends nothing of its own; it
+// hands the client's bytes to the UART at the same byte rate, records each
+// line they complete as sent (its first byte's cycle), and pairs the
+// firmware's answers with those lines in order, as the firmware answers them.
 #pragma once
 #include <cstdint>
 #include <deque>
@@ -33,6 +39,20 @@ class SerialHost {
   // sender that ignores the flow control would (for flood tests).
   void send_raw(const std::string& bytes);
   bool finished() const { return finished_; }
+
+  // Relay mode: call before the run, then relay() the client's bytes as they
+  // come. relay_backlog() is what is queued and not handed to the UART yet.
+  void relay_only() { relay_ = true; }
+  void relay(const char* bytes, size_t n) { send_raw(std::string(bytes, n)); }
+  size_t relay_backlog() const { return raw_.size() - raw_pos_; }
+  // Shortest time between two send_raw()/relay() bytes handed to the UART
+  // (cycles; 0 until two were): never below the byte time.
+  uint64_t min_byte_interval() const { return min_byte_interval_; }
+  // The MCU was reset (Machine::reset()): bytes not handed over yet are
+  // dropped, and so are the firmware's half-printed line and the client's
+  // half-sent one; lines still waiting for an answer never get one. Returns
+  // the number of bytes dropped.
+  size_t on_reset();
   bool banner_seen() const { return !received_.empty(); }
 
   const std::string& banner() const;
@@ -50,6 +70,7 @@ class SerialHost {
   static uint64_t on_byte_slot(avr_t* avr, uint64_t when, void* self);
   static uint64_t on_raw_slot(avr_t* avr, uint64_t when, void* self);
   void on_line(const std::string& line);
+  void relay_byte(char c, uint64_t cycle);
   void send_next();
 
   avr_t* avr_;
@@ -64,6 +85,12 @@ class SerialHost {
   bool wait_sent_ = false;
   bool finished_ = false;
   size_t lines_sent_ = 0;
+  bool relay_ = false;
+  std::string relay_line_;        // the client's line being handed over
+  uint64_t relay_line_cycle_ = 0;  // its first byte's cycle
+  size_t next_answer_ = 0;        // the first relayed line without an answer
+  uint64_t last_byte_cycle_ = 0;
+  uint64_t min_byte_interval_ = 0;
   std::string partial_;
   std::vector<std::string> received_;
   std::vector<Response> responses_;
