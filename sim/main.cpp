@@ -6,11 +6,13 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "machine.h"
 #include "plot.h"
 #include "progress.h"
 #include "report.h"
+#include "thermal_plant.h"
 #include "vcd.h"
 
 namespace {
@@ -19,6 +21,7 @@ void usage() {
   std::cerr << "usage: avrmotion-sim (--board NAME | --elf FILE) [--input FILE|-] [--report FILE]\n"
                "                     [--plot FILE.svg] [--vcd FILE.vcd [--vcd-signals LIST]]\n"
                "                     [--max-seconds S] [--progress]\n"
+               "                     [--thermal-initial C] [--thermal-fault NAME@S] [--thermal-fan F@S]\n"
                "  --board NAME        run " AVRMOTION_FIRMWARE_DIR "/avrmotion-NAME.elf (uno, m32, m16, m16-8mhz)\n"
                "  --input FILE        command lines to send (default: standard input); '#' starts a comment\n"
                "  --report FILE       JSON report (default: standard output)\n"
@@ -28,6 +31,11 @@ void usage() {
                "                      an axis letter, a pin (PB3), a vector (isr11), a PWM channel (pwm2A)\n"
                "  --max-seconds S     simulated-time budget (default 120); exit 3 when spent\n"
                "  --progress          progress on standard error about once a second, and at the end\n"
+               "  a board with a heater (m32) runs a simulated 40 W hot end (docs/heater.md):\n"
+               "  --thermal-initial C hot end and thermistor at C at reset (default 25)\n"
+               "  --thermal-fault NAME@S  from S seconds on: open, shorted (sensor), disconnected,\n"
+               "                      stuck_on (heater); may be given more than once\n"
+               "  --thermal-fan F@S   part fan at F (0..1) from S seconds on; more than once allowed\n"
                "exit: 0 ran to the end, 2 bad usage or image, 3 budget spent, 4 CPU stopped,\n"
                "      5 simavr reported an error (a dropped event: the run is not valid)\n";
 }
@@ -39,12 +47,25 @@ std::string strip(const std::string& line) {
   return s.substr(a, s.find_last_not_of(" \t\r") - a + 1);
 }
 
+// "VALUE@SECONDS" -> value and seconds; false if malformed.
+bool split_at(const std::string& s, std::string& value, double& seconds) {
+  const size_t at = s.find('@');
+  if (at == std::string::npos || at == 0) return false;
+  value = s.substr(0, at);
+  char* end = nullptr;
+  seconds = std::strtod(s.c_str() + at + 1, &end);
+  return end && *end == '\0' && end != s.c_str() + at + 1 && seconds >= 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string elf, input = "-", report, plot, vcd, vcd_signals;
   double max_seconds = 120;
   bool progress = false;
+  sim::ThermalParams thermal;
+  std::vector<std::pair<double, sim::ThermalFault>> faults;
+  std::vector<std::pair<double, double>> fans;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const auto value = [&]() -> std::string {
@@ -63,6 +84,32 @@ int main(int argc, char** argv) {
     else if (a == "--vcd-signals") vcd_signals = value();
     else if (a == "--max-seconds") max_seconds = std::atof(value().c_str());
     else if (a == "--progress") progress = true;
+    else if (a == "--thermal-initial") thermal.initial_c = std::atof(value().c_str());
+    else if (a == "--thermal-fault" || a == "--thermal-fan") {
+      const std::string v = value();
+      std::string what;
+      double at = 0;
+      sim::ThermalFault f;
+      char* end = nullptr;
+      if (!split_at(v, what, at)) {
+        usage();
+        return 2;
+      }
+      if (a == "--thermal-fault") {
+        if (!sim::parse_thermal_fault(what, f)) {
+          usage();
+          return 2;
+        }
+        faults.push_back({at, f});
+      } else {
+        const double fraction = std::strtod(what.c_str(), &end);
+        if (*end || fraction < 0 || fraction > 1) {
+          usage();
+          return 2;
+        }
+        fans.push_back({at, fraction});
+      }
+    }
     else {
       usage();
       return 2;
@@ -84,16 +131,24 @@ int main(int argc, char** argv) {
       const std::string s = strip(line);
       if (!s.empty()) machine.serial().add_line(s);
     }
+    std::unique_ptr<sim::ThermalPlant> plant;
+    if (machine.board().heater_pin != am::kNoPin) {
+      plant.reset(new sim::ThermalPlant(machine, thermal));
+      for (const auto& f : faults) plant->inject_at(f.first, f.second);
+      for (const auto& f : fans) plant->fan_at(f.first, f.second);
+    } else if (!faults.empty() || !fans.empty()) {
+      throw std::runtime_error("--thermal-fault/--thermal-fan: this board has no heater");
+    }
     std::unique_ptr<sim::VcdRecorder> trace;
     if (!vcd.empty()) trace.reset(new sim::VcdRecorder(machine, vcd, vcd_signals));
     const sim::RunEnd end = sim::run_script_with_progress(machine, uint64_t(max_seconds * machine.f_cpu()),
                                                           progress ? &std::cerr : nullptr);
     if (trace) trace->finish();
     if (report.empty()) {
-      sim::write_report(std::cout, machine, end);
+      sim::write_report(std::cout, machine, end, plant.get());
     } else {
       std::ofstream out(report);
-      sim::write_report(out, machine, end);
+      sim::write_report(out, machine, end, plant.get());
     }
     if (!plot.empty()) sim::write_run_plot(plot, machine, sim::PlotLabel{input == "-" ? "" : input, end});
     if (end == sim::RunEnd::budget_spent) {

@@ -5,10 +5,12 @@
 #include <string>
 
 #include "machine.h"
+#include "thermal_plant.h"
 
 namespace sim {
 
-void write_report(std::ostream& out, Machine& m, RunEnd end);
+// `plant`: the hot end attached to a board with a heater (the "thermal" key).
+void write_report(std::ostream& out, Machine& m, RunEnd end, const ThermalPlant* plant = nullptr);
 
 // The run's figures as one line, for --progress: the same simulated time
 // (the report's "seconds", same digits), lines sent / answered / ok / errors

@@ -38,16 +38,18 @@ const std::string& SerialHost::banner() const {
   return received_.empty() ? none : received_.front();
 }
 
+bool SerialHost::is_ok(const std::string& answer) { return answer == "ok" || answer.rfind("ok ", 0) == 0; }
+
 size_t SerialHost::lines_ok() const {
   size_t n = 0;
-  for (const Response& r : responses_) n += r.answer == "ok";
+  for (const Response& r : responses_) n += is_ok(r.answer);
   return n;
 }
 
 std::vector<std::string> SerialHost::errors() const {
   std::vector<std::string> out;
   for (const Response& r : responses_) {
-    if (r.answer != "ok") out.push_back(r.answer);
+    if (!is_ok(r.answer)) out.push_back(r.answer);
   }
   return out;
 }
@@ -56,7 +58,7 @@ std::vector<std::string> SerialHost::messages() const {
   std::vector<std::string> out;
   for (size_t i = 1; i < received_.size(); ++i) {
     const std::string& l = received_[i];
-    if (l != "ok" && l.rfind("error", 0) != 0) out.push_back(l);
+    if (!is_ok(l) && l.rfind("error", 0) != 0) out.push_back(l);
   }
   return out;
 }
@@ -81,7 +83,7 @@ void SerialHost::on_line(const std::string& line) {
     send_next();  // the banner: the firmware is ready
     return;
   }
-  const bool answer = line == "ok" || line.rfind("error", 0) == 0;
+  const bool answer = is_ok(line) || line.rfind("error", 0) == 0;
   if (!answer || !awaiting_answer_) return;
   awaiting_answer_ = false;
   if (wait_sent_) {

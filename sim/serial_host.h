@@ -1,6 +1,7 @@
 // The host at the other end of the firmware's UART: it sends a script of
 // command lines with the protocol's flow control (one line in flight; the next
-// line leaves after "ok" or "error: ..." came back), paced at the real byte
+// line leaves after "ok" or "error: ..." came back; "ok <report>", Marlin's
+// M105 answer, is an ok too), paced at the real byte
 // time of the baud rate, and records everything the firmware prints.
 //
 // The first line the firmware prints is its banner; nothing is sent before
@@ -19,7 +20,7 @@ namespace sim {
 
 struct Response {
   std::string line;     // the script line
-  std::string answer;   // "ok" or "error: ..."
+  std::string answer;   // "ok" (or "ok <report>") or "error: ..."
   uint64_t sent_cycle;  // first byte handed to the UART
   uint64_t answer_cycle;
 };
@@ -41,6 +42,7 @@ class SerialHost {
   size_t lines_sent() const { return lines_sent_; }
   size_t lines_pending() const { return script_.size(); }  // added, not sent yet
   size_t lines_ok() const;
+  static bool is_ok(const std::string& answer);  // "ok" or "ok <report>"
   std::vector<std::string> errors() const;
   // Lines that are neither the banner nor an answer (pos, warnings).
   std::vector<std::string> messages() const;

@@ -9,6 +9,7 @@
 #include "../../board.h"
 #include "../../engine/path.h"
 #include "../../engine/planner.h"
+#include "../../services/heater_codes.h"
 #include "reply.h"
 
 namespace gcode {
@@ -44,7 +45,7 @@ const am::GcodeAxis AxisTable<AxisSet<A...>>::value[sizeof...(A)] = {
 
 // Built on first use, so a board without G-code links none of it.
 // No arcs on the chip yet: G2/G3 are refused whole (arcs_not_here).
-using Interpreter = am::GcodeInterpreter<kAxes, false>;
+using Interpreter = am::GcodeInterpreter<kAxes, false, board::kHeater>;
 Interpreter& interpreter() {
   static Interpreter instance(AxisTable<board::Axes>::value);
   return instance;
@@ -109,6 +110,14 @@ bool move() {
   return true;
 }
 
+// A heater M-code (only a board with a heater has them): the service prints
+// its whole answer, M105's `ok T:...` included.
+bool heater_code() {
+  if (board::kHeater && !heater::run(action.heater)) return false;
+  pending = false;
+  return true;
+}
+
 }  // namespace
 
 bool claims(const char* line) {
@@ -152,6 +161,7 @@ bool accept(const char* line) {
 
 bool execute() {
   if (!pending) return true;
+  if (action.kind == am::GcodeActionKind::heater) return heater_code();
   switch (action.kind) {
     case am::GcodeActionKind::move:
       if (!move()) return false;
