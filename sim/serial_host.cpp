@@ -18,7 +18,12 @@ SerialHost::SerialHost(avr_t* avr, uint32_t baud)
   input_irq_ = avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_INPUT);
 }
 
-void SerialHost::add_line(const std::string& line) { script_.push_back(line); }
+void SerialHost::add_line(const std::string& line) {
+  script_.push_back(line);
+  if (!finished_) return;
+  finished_ = wait_sent_ = false;  // the script goes on: send it now, then WAIT again
+  send_next();
+}
 
 void SerialHost::send_raw(const std::string& bytes) {
   const bool idle = raw_pos_ >= raw_.size();
@@ -79,6 +84,7 @@ void SerialHost::on_output(avr_irq_t*, uint32_t value, void* self) {
 void SerialHost::on_line(const std::string& line) {
   const bool first = received_.empty();
   received_.push_back(line);
+  received_cycles_.push_back(avr_->cycle);
   if (first) {
     send_next();  // the banner: the firmware is ready
     return;

@@ -6,7 +6,8 @@
 //
 // The first line the firmware prints is its banner; nothing is sent before
 // it. After the last script line the host sends WAIT (not counted as a script
-// line), so finished() becomes true only once all motion has ended.
+// line), so finished() becomes true only once all motion has ended. A line
+// added once finished() is true is sent at once, and a new WAIT after it.
 #pragma once
 #include <cstdint>
 #include <deque>
@@ -38,6 +39,8 @@ class SerialHost {
 
   const std::string& banner() const;
   const std::vector<std::string>& received() const { return received_; }
+  // The cycle each received line ended (its '\n'), one per received() line.
+  const std::vector<uint64_t>& received_cycles() const { return received_cycles_; }
   const std::vector<Response>& responses() const { return responses_; }
   size_t lines_sent() const { return lines_sent_; }
   size_t lines_pending() const { return script_.size(); }  // added, not sent yet
@@ -68,6 +71,7 @@ class SerialHost {
   size_t lines_sent_ = 0;
   std::string partial_;
   std::vector<std::string> received_;
+  std::vector<uint64_t> received_cycles_;
   std::vector<Response> responses_;
 };
 

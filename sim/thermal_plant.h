@@ -81,6 +81,7 @@ class ThermalPlant {
   double sensor_c() const { return sensor_; }
   double peak_sensor_c() const { return peak_; }
   const std::vector<ThermalSample>& log() const { return log_; }
+  const std::vector<PinEdge>& heater_pin() const { return *edges_; }  // the MOSFET pin's edges
   const ThermalParams& params() const { return p_; }
 
  private:

@@ -433,6 +433,18 @@ GcodeError GcodeInterpreter<N, Arcs, Heater>::arc(const GcodeBlock& b, const Gco
   return GcodeError::none;
 }
 
+namespace gcode_detail {
+
+// A whole number lo .. hi in a word's 1/10000 units, into out.
+inline bool whole_in(int32_t v, uint8_t lo, uint8_t hi, uint8_t& out) {
+  if (v < 0 || v % 10000) return false;
+  const int32_t n = v / 10000;
+  out = uint8_t(n);
+  return n >= lo && n <= hi;
+}
+
+}  // namespace gcode_detail
+
 // A heater M-code line (see Heater codes); nothing in the state changes.
 template <uint8_t N, bool Arcs, bool Heater>
 GcodeError GcodeInterpreter<N, Arcs, Heater>::heater(const GcodeBlock& b, GcodeAction<N>& a) const {
@@ -441,21 +453,21 @@ GcodeError GcodeInterpreter<N, Arcs, Heater>::heater(const GcodeBlock& b, GcodeA
     if (g != uint8_t(GcodeGroup::machine) && b.code[g] != GcodeCode::none) return GcodeError::heater_code_alone;
   GcodeHeaterCommand& h = a.heater;
   const GcodeCode code = h.code = b.group(GcodeGroup::machine);
+  const bool m109 = code == GcodeCode::m109, m155 = code == GcodeCode::m155;
+  const bool m301 = code == GcodeCode::m301, m303 = code == GcodeCode::m303;
+  const bool needs_s = m109 || m155 || code == GcodeCode::m104;
   const uint32_t s = gcode_letter_bit('S'), r = gcode_letter_bit('R');
   uint32_t takes = gcode_letter_bit('N');
-  if (code == GcodeCode::m104 || code == GcodeCode::m155) takes |= s;
-  if (code == GcodeCode::m109) takes |= b.has('S') ? s : r;
-  if (code == GcodeCode::m301) takes |= gcode_letter_bit('P') | gcode_letter_bit('I') | gcode_letter_bit('D');
-  if (code == GcodeCode::m303) takes |= s | gcode_letter_bit('C');
+  if (needs_s) takes |= m109 && !b.has('S') ? r : s;
+  if (m301) takes |= gcode_letter_bit('P') | gcode_letter_bit('I') | gcode_letter_bit('D');
+  if (m303) takes |= s | gcode_letter_bit('C');
   if (b.words & ~takes) return GcodeError::unused_word;
-  const bool needs_s = code == GcodeCode::m104 || code == GcodeCode::m109 || code == GcodeCode::m155;
   if (needs_s && !(b.words & (s | r))) return GcodeError::missing_temperature;
   h.wait_cooling = b.has('R');
   const int32_t t = b.get(h.wait_cooling ? 'R' : 'S');  // 1/10000
-  if (code == GcodeCode::m155) {
-    if (t < 0 || t > 600000 || t % 10000) return GcodeError::bad_interval;
-    h.count = uint8_t(t / 10000);
-  } else if (code == GcodeCode::m301) {
+  if (m155) {
+    if (!gcode_detail::whole_in(t, 0, 60, h.count)) return GcodeError::bad_interval;
+  } else if (m301) {
     h.gains_given = 0;
     for (uint8_t k = 0; k < 3; ++k) {
       const char letter = k == 0 ? 'P' : k == 1 ? 'I' : 'D';
@@ -465,17 +477,12 @@ GcodeError GcodeInterpreter<N, Arcs, Heater>::heater(const GcodeBlock& b, GcodeA
       h.gains[k] = (uint32_t(v) + 5) / 10;
       h.gains_given = uint8_t(h.gains_given | (1u << k));
     }
-  } else if (code == GcodeCode::m104 || code == GcodeCode::m109 || code == GcodeCode::m303) {
-    const bool given = b.has('S') || h.wait_cooling;
-    if (given && (t < (code == GcodeCode::m303 ? 1 : 0) || t > int32_t(kGcodeMaxTarget) * 100))
-      return GcodeError::bad_temperature;
+  } else if (needs_s || m303) {
+    const bool given = (b.words & (s | r)) != 0;
+    if (given && (t < m303 || t > int32_t(kGcodeMaxTarget) * 100)) return GcodeError::bad_temperature;
     h.target = given ? int16_t((t + 50) / 100) : kGcodeAutotuneDefault;
     h.count = kGcodeAutotuneCycles;
-    if (b.has('C')) {
-      const int32_t c = b.get('C');
-      if (c < 30000 || c > 200000 || c % 10000) return GcodeError::bad_cycles;
-      h.count = uint8_t(c / 10000);
-    }
+    if (b.has('C') && !gcode_detail::whole_in(b.get('C'), 3, 20, h.count)) return GcodeError::bad_cycles;
   }
   for (uint8_t i = 0; i < N; ++i) {
     a.coord[i] = state_.axis[i].coord;

@@ -95,8 +95,8 @@ namespace am {
   X(mode_not_available, "mode not available on this axis")                   \
   X(arcs_not_here, "G2/G3 arcs are not on the step engine yet")             \
   X(no_heater, "this board has no heater")                                   \
-  X(heater_code_alone, "a heater M-code takes no other code on the line")   \
-  X(missing_temperature, "code needs S (M109: S or R)")                      \
+  X(heater_code_alone, "heater code must be alone on the line")            \
+  X(missing_temperature, "code needs S (M109: S or R)")                     \
   X(bad_temperature, "temperature must be 0 .. 260 C")                       \
   X(bad_interval, "M155 S must be whole seconds 0 .. 60")                    \
   X(bad_gains, "gains must be P, I 0 .. 1000, D 0 .. 10000")                \

@@ -50,7 +50,7 @@ constexpr uint32_t kBaud = 115200;
 constexpr uint32_t kStepTimerHz = F_CPU;
 constexpr uint32_t kMaxStepRate = 40000;
 constexpr bool kGcode = true;  // the cnc program speaks G-code (docs/gcode.md)
-constexpr uint8_t kPathBlocks = 6;  // look-ahead ring of G-code blocks (firmware/engine/path.h); RAM: the stack needs 380 B
+constexpr uint8_t kPathBlocks = 5;  // look-ahead ring of G-code blocks (firmware/engine/path.h); RAM: the heater takes a block's, the stack needs 350 B
 constexpr uint32_t kDefaultRate = 4000;    // steps/s (4 mm/s)
 constexpr uint32_t kDefaultAccel = 500000;  // steps/s^2 (500 mm/s^2)
 // Fastest ramp the planner keeps ahead of, with any axis at 40 kHz

@@ -28,9 +28,18 @@ struct FlashFetch {
 };
 
 am::AdcOversampler<2> sampler;
-am::HeaterPid pid_;
+// The PID and an autotune never run at once, so they share their RAM (the
+// m32 has 2 KB; docs/boards.md): `tuning` says which one is alive, `kept`
+// holds the PID's gains meanwhile. Both are trivially copyable, so an
+// assignment starts the other member's life.
+union Control {
+  am::HeaterPid pid;
+  am::RelayAutotune tune;
+  constexpr Control() : pid() {}
+} control;
+bool tuning_;
+am::PidGains kept;
 am::HeaterSafety safety;
-am::RelayAutotune tune;
 am::TempReading reading_{0, am::SensorState::open};
 int16_t target_, tune_target;
 uint8_t duty_;
@@ -46,19 +55,13 @@ void halt() {
   hal::uart::write_P(PSTR(", heater halted until reset\n"));
 }
 
-void write_centi(int16_t c) {
-  if (c < 0) hal::uart::write('-');
-  const uint16_t m = uint16_t(c < 0 ? -c : c);
-  hal::uart::write_u32(m / 100);
-  hal::uart::write('.');
-  hal::uart::write(uint8_t('0' + m / 10 % 10));
-  hal::uart::write(uint8_t('0' + m % 10));
+void convert() {
+  reading_ = am::thermistor_temperature<am::AdcOversampler<2>::kBits>(kTable, sampler.value(), FlashFetch());
 }
 
 void sample_period() {
-  uint16_t value = sampler.value();
-  reading_ = am::thermistor_temperature<am::AdcOversampler<2>::kBits>(kTable, value, FlashFetch());
-  const uint8_t wanted = tune.running() ? tune.update(reading_) : pid_.update(reading_, target_);
+  convert();
+  const uint8_t wanted = tuning_ ? control.tune.update(reading_) : control.pid.update(reading_, target_);
   duty_ = safety.check(now_ms, reading_, target(), wanted);
   now_ms += kPeriodMs;
   Hw::Pwm::set(duty_);
@@ -70,11 +73,18 @@ void sample_period() {
 
 void init() {
   Hw::Pwm::init();
-  pid_.set_gains(am::PidGains{22200, 1080, 114000});  // Marlin's DEFAULT_Kp/Ki/Kd
+  set_gains(am::PidGains{22200, 1080, 114000});  // Marlin's DEFAULT_Kp/Ki/Kd
   hal::adc::init(hal::adc::Prescaler::div128, false);  // 125 kHz: 104 us a conversion
   hal::adc::select(Hw::adc_channel);
+  // A first reading before anything asks for one (16 conversions, 1.9 ms).
+  do {
+    hal::adc::start();
+    while (hal::adc::busy()) {
+    }
+  } while (!sampler.add(hal::adc::read10()));
+  convert();
   hal::adc::start();
-  next_sample = clock::now() + clock::ms(kPeriodMs);  // a whole set of samples first
+  next_sample = clock::now() + clock::ms(kPeriodMs);
 }
 
 void poll() {
@@ -94,12 +104,14 @@ bool set_target(int16_t centi) {
   target_ = centi;
   return true;
 }
-int16_t target() { return tune.running() ? tune_target : target_; }
+int16_t target() { return tuning_ && control.tune.running() ? tune_target : target_; }
 am::TempReading reading() { return reading_; }
 uint8_t duty() { return duty_; }
 am::HeaterFault fault() { return safety.fault(); }
 const char* fault_text() { return kFaultText.text[uint8_t(safety.fault())]; }
-am::HeaterPid& pid() { return pid_; }
+const am::PidGains& gains() { return control.pid.gains(); }
+// One copy of HeaterPid::set_gains (about 450 bytes) for every caller.
+__attribute__((noinline)) bool set_gains(const am::PidGains& g) { return control.pid.set_gains(g, kPeriodMs); }
 
 bool autotune(int16_t centi, uint8_t cycles) {
   if (halted) return false;
@@ -107,16 +119,38 @@ bool autotune(int16_t centi, uint8_t cycles) {
   config.target = tune_target = centi;
   config.cycles = cycles;
   config.period_ms = kPeriodMs;
-  tune.start(config);
+  kept = control.pid.gains();
+  control.tune = am::RelayAutotune();
+  control.tune.start(config);
+  tuning_ = true;
   target_ = 0;  // what follows the tune
   return true;
 }
-void autotune_stop() { tune = am::RelayAutotune(); }
-const am::RelayAutotune& tuning() { return tune; }
+
+bool autotune_end(bool apply) {
+  const bool done = apply && control.tune.state() == am::AutotuneState::done;
+  const am::PidGains tuned = control.tune.gains();
+  tuning_ = false;
+  control.pid = am::HeaterPid();
+  if (done && set_gains(tuned)) return true;
+  set_gains(kept);
+  return false;
+}
+
+const am::RelayAutotune* tuning() { return tuning_ ? &control.tune : nullptr; }
 
 void auto_report(uint8_t seconds) {
   report_period = clock::ms(1000ul * seconds);
   next_report = clock::now() + report_period;
+}
+
+void write_centi(int32_t c) {
+  if (c < 0) hal::uart::write('-');
+  const uint32_t m = uint32_t(c < 0 ? -c : c);
+  hal::uart::write_u32(m / 100);
+  hal::uart::write('.');
+  hal::uart::write(uint8_t('0' + m / 10 % 10));
+  hal::uart::write(uint8_t('0' + m % 10));
 }
 
 void write_status() {

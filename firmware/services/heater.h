@@ -6,7 +6,8 @@
 //
 // Contract
 //   init() once, after board::init() (which already drives the MOSFET low)
-//   and clock::init(), before sei(): PWM off, ADC converting the thermistor.
+//   and clock::init(), before sei(): PWM off, a first reading taken (16
+//   conversions, 1.9 ms), the ADC converting the thermistor.
 //   poll() from the main loop, as often as it turns. The ADC is polled, not
 //   interrupt-driven (nothing is added to the step interrupt's latency):
 //   every finished conversion goes into a 16-sample oversampler (12 bits).
@@ -42,16 +43,23 @@ uint8_t duty();
 am::HeaterFault fault();
 const char* fault_text();  // in flash: write_P()
 
-am::HeaterPid& pid();
+// The PID's gains (Marlin's units, thousandths), while no autotune is on
+// (the two share their RAM); set_gains() is HeaterPid::set_gains (false and
+// nothing changes outside its ranges).
+const am::PidGains& gains();
+bool set_gains(const am::PidGains& g);
 // Starts an autotune (target, cycles; the rest Marlin's defaults); false
-// once a fault has latched. While it runs the PID rests; afterwards the
-// target is 0 (off).
+// once a fault has latched. While it is on, the PID rests with its gains
+// kept; it ends with autotune_end(): `apply` and a finished tune whose gains
+// set_gains() takes put them in force (true), anything else keeps the old
+// gains (false). The target is 0 (off) afterwards.
 bool autotune(int16_t centi, uint8_t cycles);
-void autotune_stop();  // heater off, the gains as they were
-const am::RelayAutotune& tuning();
+bool autotune_end(bool apply);
+const am::RelayAutotune* tuning();  // nullptr while no autotune is on
 
 void auto_report(uint8_t seconds);  // 0: off
 // `T:<cur> /<target> @:<duty>` without the line end.
 void write_status();
+void write_centi(int32_t hundredths);  // "-12.34"
 
 }  // namespace heater

@@ -23,11 +23,7 @@ void error(const char* progmem_text) {
 
 void write_gain(const char* progmem_label, uint32_t milli) {
   hal::uart::write_P(progmem_label);
-  const uint32_t centi = (milli + 5) / 10;
-  hal::uart::write_u32(centi / 100);
-  hal::uart::write('.');
-  hal::uart::write(uint8_t('0' + centi / 10 % 10));
-  hal::uart::write(uint8_t('0' + centi % 10));
+  write_centi(int32_t((milli + 5) / 10));
 }
 
 void write_gains(const char* progmem_head, const am::PidGains& g) {
@@ -53,33 +49,35 @@ bool wait_turn(const am::GcodeHeaterCommand& c) {
     waiting = true;
     next_status = clock::now() + clock::ms(1000);
   }
-  bool done = false;
+  const bool m303 = c.code == am::GcodeCode::m303;
+  const char* failed = nullptr;
+  bool apply = false;
   if (fault() != am::HeaterFault::none) {
-    error(PSTR("heater halted"));
-    done = true;
+    failed = PSTR("heater halted");
   } else if (hal::uart::available()) {
-    if (c.code == am::GcodeCode::m303) autotune_stop();
-    error(PSTR("wait ended by the host"));
-    done = true;
-  } else if (c.code == am::GcodeCode::m109 ? reached(c.wait_cooling) : !tuning().running()) {
-    done = true;
-    if (c.code == am::GcodeCode::m109) {
-      ok();
-    } else if (tuning().state() == am::AutotuneState::done && pid().set_gains(tuning().gains())) {
-      write_gains(PSTR("PID Autotune finished: "), pid().gains());
-      ok();
-    } else {
-      error(tuning().state() == am::AutotuneState::failed_overshoot ? PSTR("autotune failed: overshoot")
-            : tuning().state() == am::AutotuneState::failed_timeout ? PSTR("autotune failed: timeout")
-            : tuning().state() == am::AutotuneState::failed_sensor  ? PSTR("autotune failed: sensor")
-                                                                     : PSTR("autotune failed: gains out of range"));
+    failed = PSTR("wait ended by the host");
+  } else if (m303 ? tuning()->running() : !reached(c.wait_cooling)) {
+    if (clock::due(next_status, clock::ms(1000))) {
+      write_status();
+      hal::uart::write('\n');
     }
-  } else if (clock::due(next_status, clock::ms(1000))) {
-    write_status();
-    hal::uart::write('\n');
+    return false;
+  } else if (m303) {
+    const am::AutotuneState s = tuning()->state();
+    apply = s == am::AutotuneState::done;  // "gains out of range" unless set_gains() takes them
+    failed = s == am::AutotuneState::failed_overshoot ? PSTR("autotune failed: overshoot")
+             : s == am::AutotuneState::failed_timeout ? PSTR("autotune failed: timeout")
+             : s == am::AutotuneState::failed_sensor  ? PSTR("autotune failed: sensor")
+                                                      : PSTR("autotune failed: gains out of range");
   }
-  if (done) waiting = false;
-  return done;
+  waiting = false;
+  if (m303 && autotune_end(apply)) {
+    write_gains(PSTR("PID Autotune finished: "), gains());
+    failed = nullptr;
+  }
+  if (failed) error(failed);
+  else ok();
+  return true;
 }
 
 bool refuse_halted() {
@@ -113,13 +111,13 @@ bool run(const am::GcodeHeaterCommand& c) {
       ok();
       return true;
     case am::GcodeCode::m301: {
-      am::PidGains g = pid().gains();
+      am::PidGains g = gains();
       if (c.gains_given & 1) g.kp_milli = c.gains[0];
       if (c.gains_given & 2) g.ki_milli = c.gains[1];
       if (c.gains_given & 4) g.kd_milli = c.gains[2];
       // The interpreter checked the ranges set_gains() takes.
-      pid().set_gains(g);
-      write_gains(PSTR("echo: "), pid().gains());
+      set_gains(g);
+      write_gains(PSTR("echo: "), gains());
       ok();
       return true;
     }

@@ -23,7 +23,7 @@ namespace {
 
 constexpr double kTick = 16000000.0;  // the m32's step timer
 constexpr uint8_t kAxes = 4;          // X Y Z E
-constexpr uint8_t kRing = 6;          // board::kPathBlocks
+constexpr uint8_t kRing = 5;          // board::kPathBlocks
 constexpr double kStepsPerMm = 1000.0;
 
 using Block = am::PathBlock<kAxes>;

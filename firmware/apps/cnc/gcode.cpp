@@ -2,7 +2,6 @@
 
 #include <avr/pgmspace.h>
 
-#define AM_TEXT(s) PSTR(s)
 #include "../../../core/text/gcode_interpreter.h"
 #include "../../../hal/avr/uart.h"
 #include "../../axes/axis_modes.h"
@@ -50,6 +49,15 @@ Interpreter& interpreter() {
   static Interpreter instance(AxisTable<board::Axes>::value);
   return instance;
 }
+// The error texts and their pointers in flash (docs/gcode.md: a switch over
+// PSTR()s would become a pointer table in RAM).
+#define AM_ERROR_TEXT(name, text) const char name##_text[] PROGMEM = text;
+AM_GCODE_ERRORS(AM_ERROR_TEXT)
+#undef AM_ERROR_TEXT
+#define AM_ERROR_POINTER(name, text) name##_text,
+const char* const kErrorText[] PROGMEM = {AM_GCODE_ERRORS(AM_ERROR_POINTER)};
+#undef AM_ERROR_POINTER
+
 am::GcodeAction<kAxes> action;  // the accepted line's, until execute() has run it
 bool pending;
 int32_t coord_before[kAxes];  // program position before the pending line
@@ -138,7 +146,7 @@ bool accept(const char* line) {
   }
   const am::GcodeError e = interpreter().run(line, action);
   if (e != am::GcodeError::none) {
-    reply::error(am::gcode_error_message(e));  // a flash string: AM_TEXT is PSTR here
+    reply::error(reinterpret_cast<const char*>(pgm_read_word(&kErrorText[uint8_t(e)])));
     return false;
   }
   // What the machine cannot run is refused now, with the state put back.

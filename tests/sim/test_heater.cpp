@@ -1,0 +1,326 @@
+// The heater service on the real m32 image against the simulated 40 W hot
+// end (sim/thermal_plant.h): the heat-up and hold, a fan step, the M-codes'
+// answers, and every fault cutting the heater within its deadline with its
+// message. Times are simulated (cycles at 16 MHz).
+#include <algorithm>
+#include <cmath>
+#include <regex>
+#include <string>
+
+#include "sim_fixture.h"
+#include "thermal_plant.h"
+
+namespace {
+
+constexpr double kHz = 16e6;
+
+struct HotEnd {
+  std::unique_ptr<sim::Machine> m;
+  std::unique_ptr<sim::ThermalPlant> plant;
+
+  explicit HotEnd(double initial_c = 25, double heater_w = 40) : m(new sim::Machine(simtest::image("m32"))) {
+    sim::ThermalParams p;
+    p.initial_c = initial_c;
+    p.heater_w = heater_w;
+    plant.reset(new sim::ThermalPlant(*m, p));
+  }
+  void send(const std::string& line) { m->serial().add_line(line); }
+  void run_until(double t_s) {
+    const uint64_t end = uint64_t(t_s * kHz);
+    m->run([&] { return m->cycles() >= end; }, end - std::min(end, m->cycles()) + 1);
+  }
+  double now_s() const { return double(m->cycles()) / kHz; }
+  // The first received line starting with `prefix`, and when it ended (s); -1 if none.
+  double line_time(const std::string& prefix, std::string* line = nullptr) const {
+    const auto& r = m->serial().received();
+    for (size_t i = 0; i < r.size(); ++i) {
+      if (r[i].rfind(prefix, 0) == 0) {
+        if (line) *line = r[i];
+        return double(m->serial().received_cycles()[i]) / kHz;
+      }
+    }
+    return -1;
+  }
+  // The answer to the last script line equal to `script_line`.
+  const sim::Response* answer_of(const std::string& script_line) const {
+    const sim::Response* found = nullptr;
+    for (const sim::Response& r : m->serial().responses())
+      if (r.line == script_line) found = &r;
+    return found;
+  }
+  // When the heater pin was last high (s): now if it is high, 0 if never.
+  double last_high_s() const {
+    const auto& e = plant->heater_pin();
+    if (!e.empty() && e.back().level) return now_s();
+    for (size_t i = e.size(); i-- > 1;)
+      if (!e[i].level && e[i - 1].level) return double(e[i].cycle) / kHz;
+    return 0;
+  }
+  // When the plant's thermistor first crossed `c` going up (or down), -1 if never.
+  double crossed_s(double c, bool up) const {
+    for (const sim::ThermalSample& s : plant->log())
+      if (up ? s.sensor_c > c : s.sensor_c < c) return s.t_s;
+    return -1;
+  }
+};
+
+const std::regex kStatus(R"(T:-?\d+\.\d\d /\d+\.\d\d @:\d+)");
+constexpr double kFanAt = 170, kEnd = 250;
+
+// 25 -> 200 C with M109 and Marlin's default gains, a print streaming while it
+// holds, then a part-fan step: the whole run in one simulation (about 230 s).
+TEST(Heater, HeatsTo200HoldsItAndRecoversFromAFanStep) {
+  HotEnd h;
+  h.send("M109 S200");
+  h.send("M105");
+  // Then a print streams while the heater holds: G-code moves (about 10 s),
+  // the step engine never starved.
+  for (int k = 0; k < 20; ++k) h.send(k % 2 ? "G1 X0 Y0 E0 F3000" : "G1 X20 Y15 E2 F3000");
+  h.plant->fan_at(kFanAt, 1.0);
+  h.run_until(kEnd);
+
+  // M109 waited until the reading was within 1 C (T >= 199 C), printing the
+  // status once a second, then the next line ran.
+  const sim::Response* wait = h.answer_of("M109 S200");
+  ASSERT_NE(wait, nullptr);
+  EXPECT_EQ(wait->answer, "ok");
+  const double waited = double(wait->answer_cycle - wait->sent_cycle) / kHz;
+  const double reached = h.crossed_s(198.5, true);
+  EXPECT_GT(waited, 60);  // it did wait: 60-90 s of full power from 25 C
+  EXPECT_NEAR(wait->answer_cycle / kHz, h.crossed_s(199, true), 1.5);
+  int status_lines = 0;
+  for (const std::string& l : h.m->serial().messages()) status_lines += std::regex_match(l, kStatus);
+  EXPECT_NEAR(status_lines, waited, 1.5);
+  const sim::Response* m105 = h.answer_of("M105");
+  ASSERT_NE(m105, nullptr);
+  EXPECT_GE(m105->sent_cycle, wait->answer_cycle);
+  EXPECT_TRUE(std::regex_match(m105->answer, std::regex(R"(ok T:(199|200)\.\d\d /200\.00 @:\d+)"))) << m105->answer;
+
+  // Overshoot and the hold before the fan.
+  double peak = 0, lo = 1e9, hi = -1e9, settled = -1;
+  for (const sim::ThermalSample& s : h.plant->log()) {
+    if (s.t_s > kFanAt) break;
+    peak = std::max(peak, s.sensor_c);
+    if (s.t_s >= 150) lo = std::min(lo, s.sensor_c), hi = std::max(hi, s.sensor_c);
+  }
+  for (const sim::ThermalSample& s : h.plant->log()) {  // last time outside +-0.3 C before the fan
+    if (s.t_s > kFanAt) break;
+    if (std::fabs(s.sensor_c - 200) > 0.3) settled = s.t_s;
+  }
+  EXPECT_LE(peak - 200, 1.0);
+  EXPECT_GE(lo, 199.7);
+  EXPECT_LE(hi, 200.3);
+  std::printf("heat-up: 25 -> 198.5 C in %.1f s, M109 done after %.1f s, overshoot %.2f C, within +-0.3 C from %.1f s,"
+              " 150..%.0f s: %.2f .. %.2f C\n",
+              reached, waited, peak - 200, settled, kFanAt, lo, hi);
+
+  // The fan (8.75 W more loss at 200 C, 35 % of the heater): the dip, and
+  // back within +-0.3 C.
+  double dip = 1e9, back = -1;
+  for (const sim::ThermalSample& s : h.plant->log()) {
+    if (s.t_s < kFanAt) continue;
+    dip = std::min(dip, s.sensor_c);
+    if (std::fabs(s.sensor_c - 200) > 0.3) back = s.t_s;
+  }
+  EXPECT_LT(dip, 199.7);              // the step is felt
+  EXPECT_LT(back, kEnd - 10);         // and corrected
+  std::printf("fan step at %.0f s: dip to %.2f C, within +-0.3 C again after %.1f s\n", kFanAt, dip, back - kFanAt);
+
+  // The moves ran whole while the heater held.
+  EXPECT_EQ(h.m->starvations(), 0);
+  for (const char axis : {'X', 'Y', 'E'}) EXPECT_DOUBLE_EQ(h.m->axis(axis)->steps(), 0.0) << axis;
+  EXPECT_EQ(h.m->axis('X')->step_cycles.size(), 20u * 20000u);
+  EXPECT_EQ(h.m->serial().errors().size(), 0u);
+}
+
+// M105 in Marlin's format, M155 auto-reports, M301, bad input refused.
+TEST(Heater, CommandsAnswerInMarlinsFormatAndRefuseBadInput) {
+  HotEnd h;
+  for (const char* l : {"M105", "M155 S1", "M104 S300", "M104 S-5", "M301 P1001", "M301 P30.5 I2 D80", "M301",
+                        "M104 S150", "G4 P3.2", "WAIT", "M155 S0", "M105", "M104 S0"})
+    h.send(l);
+  h.run_until(6);
+  ASSERT_TRUE(h.m->serial().finished());
+  const auto ans = [&](const char* l) { return h.answer_of(l) ? h.answer_of(l)->answer : std::string("none"); };
+  // At power-up: the first reading is taken before the banner.
+  const std::string first = h.m->serial().responses().at(0).answer;
+  EXPECT_TRUE(std::regex_match(first, std::regex(R"(ok T:2[45]\.\d\d /0\.00 @:0)"))) << first;
+  EXPECT_EQ(ans("M104 S300"), "error: temperature must be 0 .. 260 C");
+  EXPECT_EQ(ans("M104 S-5"), "error: temperature must be 0 .. 260 C");
+  EXPECT_EQ(ans("M301 P1001"), "error: gains must be P, I 0 .. 1000, D 0 .. 10000");
+  // The refused lines changed nothing: the target was still 0 (M105 above),
+  // the gains Marlin's until M301 set them.
+  std::vector<std::string> echo;
+  for (const std::string& l : h.m->serial().messages())
+    if (l.rfind("echo:", 0) == 0) echo.push_back(l);
+  ASSERT_EQ(echo.size(), 2u);
+  EXPECT_EQ(echo[0], "echo: p:30.50 i:2.00 d:80.00");
+  EXPECT_EQ(echo[1], "echo: p:30.50 i:2.00 d:80.00");
+  // Auto-report: one status line a second from M155 S1 until M155 S0.
+  std::vector<double> at;
+  const auto& r = h.m->serial().received();
+  for (size_t i = 0; i < r.size(); ++i)
+    if (std::regex_match(r[i], kStatus)) at.push_back(double(h.m->serial().received_cycles()[i]) / kHz);
+  ASSERT_GE(at.size(), 3u);
+  for (size_t i = 1; i < at.size(); ++i) EXPECT_NEAR(at[i] - at[i - 1], 1.0, 0.002) << i;
+  const double m155_off = double(h.answer_of("M155 S0")->answer_cycle) / kHz;
+  EXPECT_LT(at.back(), m155_off);
+  // The heater heated while M104 S150 held (pin high).
+  EXPECT_GT(h.last_high_s(), 1.0);
+  const std::string last = ans("M105");
+  EXPECT_TRUE(std::regex_match(last, std::regex(R"(ok T:\d+\.\d\d /150\.00 @:\d+)"))) << last;
+}
+
+// M109 ends early when the host sends a line (M108); the target stays.
+TEST(Heater, M109IsAbortedByAnyLineFromTheHost) {
+  HotEnd h;
+  h.send("M109 S200");
+  h.run_until(3);
+  const double sent = h.now_s();
+  h.m->serial().send_raw("M108\n");
+  h.run_until(4);
+  const sim::Response* wait = h.answer_of("M109 S200");
+  ASSERT_NE(wait, nullptr);
+  EXPECT_EQ(wait->answer, "error: wait ended by the host");
+  EXPECT_GT(wait->answer_cycle / kHz, sent);
+  EXPECT_LT(wait->answer_cycle / kHz, sent + 0.01);
+  EXPECT_DOUBLE_EQ(h.last_high_s(), h.now_s());  // still heating: the target stays
+}
+
+struct FaultCase {
+  const char* name;
+  sim::ThermalFault fault;
+  const char* message;
+};
+
+class SensorFault : public ::testing::TestWithParam<FaultCase> {};
+
+// A broken thermistor while heating: off at once (the reading is no
+// temperature), the fault latched and reported within 1 s, the halt kept.
+TEST_P(SensorFault, CutsTheHeaterWithinOneSecondAndHalts) {
+  const FaultCase& c = GetParam();
+  HotEnd h;
+  h.send("M104 S200");
+  h.plant->inject_at(3.0, c.fault);
+  h.run_until(3.0);
+  ASSERT_DOUBLE_EQ(h.last_high_s(), h.now_s());  // heating when it broke
+  h.run_until(5.0);
+  std::string line;
+  const double error_at = h.line_time("Error:", &line);
+  EXPECT_EQ(line, std::string("Error:") + c.message + ", heater halted until reset");
+  EXPECT_GT(error_at, 3.0);
+  EXPECT_LE(error_at - 3.0, 1.0);
+  const double off = h.last_high_s();
+  EXPECT_LE(off - 3.0, 1.0);
+  std::printf("%s: heater off %.0f ms after the break, message after %.0f ms\n", c.name, (off - 3) * 1000,
+              (error_at - 3) * 1000);
+  // The halt survives the sensor coming back and any new target.
+  h.plant->inject(sim::ThermalFault::none);
+  h.send("M104 S200");
+  h.send("M105");
+  h.run_until(7.0);
+  const auto& resp = h.m->serial().responses();
+  ASSERT_GE(resp.size(), 3u);
+  EXPECT_EQ(resp[0].answer, "ok");  // the M104 before the fault
+  EXPECT_EQ(resp[1].answer, std::string("error: heater halted (") + c.message + "), reset to clear");
+  EXPECT_TRUE(std::regex_match(resp[2].answer, std::regex(R"(ok T:\d+\.\d\d /0\.00 @:0)"))) << resp[2].answer;
+  EXPECT_LT(h.last_high_s(), 3.0 + 1.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Heater, SensorFault,
+                         ::testing::Values(FaultCase{"open", sim::ThermalFault::sensor_open, "Thermistor open"},
+                                           FaultCase{"shorted", sim::ThermalFault::sensor_shorted,
+                                                     "Thermistor shorted"}),
+                         [](const ::testing::TestParamInfo<FaultCase>& info) { return info.param.name; });
+
+// The heater falls out while holding at 200 C, Marlin's gains: the PID
+// saturates within seconds, and the heating watch (full power, less than 2 C
+// in 20 s) halts it before the runaway period (40 s below target - 4 C) ends.
+TEST(Heater, DisconnectedWhileHoldingHaltsWithin40s) {
+  HotEnd h(201);
+  h.send("M109 S200");  // hotter already: holding at once
+  h.plant->inject_at(5.0, sim::ThermalFault::heater_disconnected);
+  h.run_until(50);
+  const double below = h.crossed_s(196, false);
+  ASSERT_GT(below, 5.0);
+  std::string line;
+  const double error_at = h.line_time("Error:", &line);
+  EXPECT_EQ(line, "Error:Heating failed, heater halted until reset");
+  EXPECT_GT(error_at, below);
+  EXPECT_LE(error_at - below, 40.0);
+  EXPECT_LE(h.last_high_s(), error_at);
+  std::printf("disconnected while holding: below 196 C at %.2f s, Heating failed at %.2f s\n", below, error_at);
+}
+
+// The runaway rule itself: with gains too weak to saturate (M301 P2 I0 D0)
+// the heater falls out while holding; Thermal Runaway 40 s after the
+// reading went below target - 4 C (THERMAL_PROTECTION_PERIOD/HYSTERESIS).
+TEST(Heater, BelowTargetFor40sHoldingIsThermalRunaway) {
+  HotEnd h(201);
+  h.send("M301 P2 I0 D0");
+  h.send("M104 S200");  // 201 C: the target is reached at once, holding
+  h.plant->inject_at(2.0, sim::ThermalFault::heater_disconnected);
+  h.run_until(50);
+  const double below = h.crossed_s(196, false);
+  ASSERT_GT(below, 2.0);
+  std::string line;
+  const double error_at = h.line_time("Error:", &line);
+  EXPECT_EQ(line, "Error:Thermal Runaway, heater halted until reset");
+  // The reading follows the plant's thermistor within a sample and a few
+  // 0.01 C of table error: at 1.7 C/s well inside +-0.5 s.
+  EXPECT_NEAR(error_at - below, 40.0, 0.5);
+  EXPECT_LE(h.last_high_s(), error_at);
+  std::printf("runaway: below 196 C at %.2f s, Thermal Runaway at %.2f s (%.2f s later)\n", below, error_at,
+              error_at - below);
+}
+
+// The heater falls out during the heat-up: Heating failed 20 s after full
+// power began (less than 2 C in 20 s: WATCH_TEMP_PERIOD/INCREASE).
+TEST(Heater, DisconnectedWhileHeatingIsHeatingFailedAfter20s) {
+  HotEnd h;
+  h.plant->inject(sim::ThermalFault::heater_disconnected);
+  h.send("M104 S200");
+  h.run_until(23);
+  const auto& pin = h.plant->heater_pin();
+  double full_on = -1;
+  for (const sim::PinEdge& e : pin)
+    if (e.level) {
+      full_on = double(e.cycle) / kHz;
+      break;
+    }
+  ASSERT_GT(full_on, 0);
+  std::string line;
+  const double error_at = h.line_time("Error:", &line);
+  EXPECT_EQ(line, "Error:Heating failed, heater halted until reset");
+  EXPECT_GE(error_at - full_on, 20.0);
+  EXPECT_LE(error_at - full_on, 20.0 + 0.25);
+  EXPECT_LE(h.last_high_s(), error_at);
+  std::printf("heating failed: full power at %.3f s, fault at %.3f s (%.3f s later)\n", full_on, error_at,
+              error_at - full_on);
+}
+
+// A MOSFET stuck on drives the hot end past MAXTEMP (275 C): reported at
+// once. (An 80 W cartridge here, so the climb from 265 C takes seconds.)
+TEST(Heater, StuckOnIsMaxtempAtTheCrossing) {
+  HotEnd h(265, 80);
+  h.plant->inject(sim::ThermalFault::heater_stuck_on);
+  h.send("M104 S200");
+  h.run_until(8);
+  const double crossing = h.crossed_s(275, true);
+  ASSERT_GT(crossing, 0);
+  std::string line;
+  const double error_at = h.line_time("Error:", &line);
+  EXPECT_EQ(line, "Error:MAXTEMP triggered, heater halted until reset");
+  EXPECT_NEAR(error_at, crossing, 0.3);
+  EXPECT_DOUBLE_EQ(h.last_high_s(), 0.0);  // the firmware never drove it (above target)
+  std::printf("maxtemp: plant at 275 C at %.2f s, MAXTEMP at %.2f s\n", crossing, error_at);
+}
+
+// A board without a heater refuses the heater codes, clearly.
+TEST(Heater, TheUnoHasNoHeater) {
+  auto m = simtest::run("uno", {"M104 S200", "M105", "M303"}, 2);
+  for (const sim::Response& r : m->serial().responses()) EXPECT_EQ(r.answer, "error: this board has no heater");
+  EXPECT_EQ(m->serial().responses().size(), 3u);
+}
+
+}  // namespace
