@@ -16,6 +16,8 @@
 //   - watch_pwm():     duty (OCR value) of a timer's PWM channel, logged when
 //                      the firmware writes an OCR in a PWM mode and the value
 //                      changed (simavr's TIMER_IRQ_OUT_PWM0/1), cycle-stamped.
+// A board whose descriptor names a heater starts with its thermistor's ADC
+// input at 25 C (sim/thermal_plant.h drives it from a hot end instead).
 // run() always ends: when the stop condition holds, when the cycle budget is
 // spent (a hung image fails a test instead of hanging CI) or when the core
 // stops or crashes. A run in which simavr reported an error does not end

@@ -60,11 +60,23 @@ void ThermalPlant::on_adc_trigger(avr_irq_t*, uint32_t, void* param) {
   self->m_.set_adc_millivolts(self->adc_channel_, self->input_mv());
 }
 
+namespace {
+
+double divider_mv(const ThermalParams& p, double c) {
+  const double r = p.r0_ohm * std::exp(p.beta * (1 / (c + 273.15) - 1 / (p.t0_c + 273.15)));
+  return p.vref_mv * r / (r + p.pullup_ohm);
+}
+
+}  // namespace
+
+uint32_t thermistor_input_mv(const ThermalParams& p, double c) {
+  return uint32_t(std::lround(divider_mv(p, c) * 1024 / 1023));
+}
+
 uint32_t ThermalPlant::input_mv() {
   if (fault_ == ThermalFault::sensor_open) return uint32_t(std::lround(p_.vref_mv * 1024 / 1023));
   if (fault_ == ThermalFault::sensor_shorted) return 0;
-  const double r = p_.r0_ohm * std::exp(p_.beta * (1 / (sensor_ + 273.15) - 1 / (p_.t0_c + 273.15)));
-  const double mv = p_.vref_mv * r / (r + p_.pullup_ohm) + p_.noise_mv * noise_(rng_);
+  const double mv = divider_mv(p_, sensor_) + p_.noise_mv * noise_(rng_);
   return uint32_t(std::lround(std::max(0.0, mv * 1024 / 1023)));
 }
 

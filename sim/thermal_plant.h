@@ -50,6 +50,10 @@ struct ThermalParams {
   double noise_mv = 3;
 };
 
+// The divider's ADC input for a thermistor at `c`, without noise, scaled for
+// simavr's converter (see above).
+uint32_t thermistor_input_mv(const ThermalParams& p, double c);
+
 enum class ThermalFault { none, sensor_open, sensor_shorted, heater_disconnected, heater_stuck_on };
 
 // "open", "shorted", "disconnected", "stuck_on" -> the fault; false if none.

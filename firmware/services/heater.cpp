@@ -84,7 +84,7 @@ void init() {
   } while (!sampler.add(hal::adc::read10()));
   convert();
   hal::adc::start();
-  next_sample = clock::now() + clock::ms(kPeriodMs);
+  next_sample = clock::ms(kPeriodMs);  // the clock starts at 0 after this
 }
 
 void poll() {

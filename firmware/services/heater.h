@@ -6,8 +6,9 @@
 //
 // Contract
 //   init() once, after board::init() (which already drives the MOSFET low)
-//   and clock::init(), before sei(): PWM off, a first reading taken (16
-//   conversions, 1.9 ms), the ADC converting the thermistor.
+//   and before clock::init() and sei(): PWM off, a first reading taken (16
+//   conversions, 1.9 ms, before the time base runs: with interrupts off it
+//   would lose an overflow), the ADC converting the thermistor.
 //   poll() from the main loop, as often as it turns. The ADC is polled, not
 //   interrupt-driven (nothing is added to the step interrupt's latency):
 //   every finished conversion goes into a 16-sample oversampler (12 bits).
