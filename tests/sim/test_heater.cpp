@@ -7,6 +7,8 @@
 #include <regex>
 #include <string>
 
+#include <sim_avr.h>
+
 #include "sim_fixture.h"
 #include "thermal_plant.h"
 
@@ -71,6 +73,7 @@ constexpr double kFanAt = 170, kEnd = 250;
 // holds, then a part-fan step: the whole run in one simulation (about 230 s).
 TEST(Heater, HeatsTo200HoldsItAndRecoversFromAFanStep) {
   HotEnd h;
+  const auto& temp_ok = h.m->watch_pin('D', 6);
   h.send("M109 S200");
   h.send("M105");
   // Then a print streams while the heater holds: G-code moves (about 10 s),
@@ -125,6 +128,14 @@ TEST(Heater, HeatsTo200HoldsItAndRecoversFromAFanStep) {
   EXPECT_LT(dip, 199.7);              // the step is felt
   EXPECT_LT(back, kEnd - 10);         // and corrected
   std::printf("fan step at %.0f s: dip to %.2f C, within +-0.3 C again after %.1f s\n", kFanAt, dip, back - kFanAt);
+
+  // TEMP_OK (PD6): high from the reading's first |T - 200| <= 3 C on, through
+  // the fan's dip.
+  std::vector<double> rises, falls;
+  for (const sim::PinEdge& e : temp_ok) (e.level ? rises : falls).push_back(double(e.cycle) / kHz);
+  ASSERT_EQ(rises.size(), 1u);
+  EXPECT_TRUE(falls.empty() || falls.back() < rises.front());
+  EXPECT_NEAR(rises.front(), h.crossed_s(197, true), 0.5);
 
   // The moves ran whole while the heater held.
   EXPECT_EQ(h.m->starvations(), 0);
@@ -314,6 +325,81 @@ TEST(Heater, StuckOnIsMaxtempAtTheCrossing) {
   EXPECT_NEAR(error_at, crossing, 0.3);
   EXPECT_DOUBLE_EQ(h.last_high_s(), 0.0);  // the firmware never drove it (above target)
   std::printf("maxtemp: plant at 275 C at %.2f s, MAXTEMP at %.2f s\n", crossing, error_at);
+}
+
+// M303 from 25 C: Marlin's relay at 200 C over 3 cycles, its Ziegler-Nichols
+// gains reported and applied; a new heat-up with them meets the bounds.
+TEST(Heater, AutotuneAt200GivesGainsThatMeetTheBounds) {
+  HotEnd h;
+  h.send("M303 S200 C3");
+  h.send("M301");
+  h.run_until(160);
+  ASSERT_TRUE(h.m->serial().finished());
+  std::string done, echo;
+  ASSERT_GT(h.line_time("PID Autotune finished: ", &done), 0);
+  ASSERT_GT(h.line_time("echo: ", &echo), 0);
+  std::smatch g;
+  ASSERT_TRUE(std::regex_match(done, g, std::regex(R"(PID Autotune finished: (p:\d+\.\d\d i:\d+\.\d\d d:\d+\.\d\d))")))
+      << done;
+  EXPECT_EQ(echo, "echo: " + g[1].str());  // applied
+  EXPECT_EQ(h.answer_of("M303 S200 C3")->answer, "ok");
+  // It oscillated around the target, within Marlin's 30 C overshoot guard.
+  double lo = 1e9, hi = -1e9;
+  for (const sim::ThermalSample& s : h.plant->log())
+    if (s.t_s > 95 && s.t_s < h.answer_of("M303 S200 C3")->answer_cycle / kHz)
+      lo = std::min(lo, s.sensor_c), hi = std::max(hi, s.sensor_c);
+  EXPECT_LT(lo, 200);
+  EXPECT_GT(hi, 200);
+  EXPECT_LT(hi, 230);
+  std::printf("autotune: %s after %.1f s, oscillation %.2f .. %.2f C\n", done.c_str(),
+              h.answer_of("M303 S200 C3")->answer_cycle / kHz, lo, hi);
+
+  HotEnd t;
+  float p = 0, i = 0, d = 0;
+  ASSERT_EQ(std::sscanf(g[1].str().c_str(), "p:%f i:%f d:%f", &p, &i, &d), 3);
+  char m301[64];
+  std::snprintf(m301, sizeof m301, "M301 P%.2f I%.2f D%.2f", p, i, d);
+  t.send(m301);
+  t.send("M109 S200");
+  t.send("G4 P80");
+  t.run_until(150);
+  double peak = 0, lo2 = 1e9, hi2 = -1e9, settled = 0;
+  for (const sim::ThermalSample& s : t.plant->log()) {
+    peak = std::max(peak, s.sensor_c);
+    if (s.t_s >= 120) lo2 = std::min(lo2, s.sensor_c), hi2 = std::max(hi2, s.sensor_c);
+    if (s.t_s > 60 && std::fabs(s.sensor_c - 200) > 0.3) settled = s.t_s;
+  }
+  EXPECT_LE(peak - 200, 1.0);
+  EXPECT_GE(lo2, 199.7);
+  EXPECT_LE(hi2, 200.3);
+  std::printf("tuned heat-up 25 -> 200 C: overshoot %.2f C, within +-0.3 C from %.1f s, 120..150 s: %.2f .. %.2f C\n",
+              peak - 200, settled, lo2, hi2);
+}
+
+// Power-up: the MOSFET's pin is a low output before any other peripheral is
+// set up, OC2 disconnected, TEMP_OK low, and nothing pulses it.
+TEST(Heater, PowerOnDrivesTheHeaterOffFirst) {
+  sim::Machine m(simtest::image("m32"));
+  const auto& heater = m.watch_pin('D', 7);
+  const auto& temp_ok = m.watch_pin('D', 6);
+  const uint8_t* d = m.avr()->data;
+  constexpr uint16_t kDDRD = 0x31, kPORTD = 0x32, kUCSRB = 0x2A, kTCCR0 = 0x53, kTCCR1B = 0x4E, kTCCR2 = 0x45;
+  const uint8_t at_reset[4] = {d[kUCSRB], d[kTCCR0], d[kTCCR1B], d[kTCCR2]};
+  ASSERT_EQ(m.run([&] { return (d[kDDRD] & 0x80) != 0; }, 100000), sim::RunEnd::done);
+  EXPECT_EQ(d[kPORTD] & 0x80, 0);
+  // Nothing else is set up yet: the UART and the timers as at reset.
+  EXPECT_EQ(d[kUCSRB], at_reset[0]);
+  EXPECT_EQ(d[kTCCR0], at_reset[1]);
+  EXPECT_EQ(d[kTCCR1B], at_reset[2]);
+  EXPECT_EQ(d[kTCCR2], at_reset[3]);
+  std::printf("heater pin a low output %llu cycles after reset\n", (unsigned long long)m.cycles());
+  m.run([&] { return m.serial().banner_seen(); }, 16000000);
+  m.serial().add_line("G4 P1");
+  ASSERT_EQ(m.run_script(uint64_t(2 * kHz)), sim::RunEnd::done);
+  for (const sim::PinEdge& e : heater) EXPECT_FALSE(e.level);
+  for (const sim::PinEdge& e : temp_ok) EXPECT_FALSE(e.level);
+  EXPECT_EQ(d[kTCCR2] & 0x30, 0);  // COM21:0 = 00: OC2 disconnected
+  EXPECT_EQ(d[kTCCR2] & 0x4F, 0x4D);  // fast PWM, clk/128: 488 Hz once it is connected
 }
 
 // A board without a heater refuses the heater codes, clearly.
