@@ -435,6 +435,15 @@ GcodeError GcodeInterpreter<N, Arcs, Heater>::arc(const GcodeBlock& b, const Gco
 
 namespace gcode_detail {
 
+// M301's word `letter` into thousandths: 1 given, 0 absent, 8 beyond 0 .. max
+// (1/10000 units).
+inline uint8_t gain(const GcodeBlock& b, char letter, int32_t max, uint32_t& out) {
+  if (!b.has(letter)) return 0;
+  const int32_t v = b.get(letter);
+  out = (uint32_t(v) + 5) / 10;
+  return v < 0 || v > max ? 8 : 1;
+}
+
 // A whole number lo .. hi in a word's 1/10000 units, into out.
 inline bool whole_in(int32_t v, uint8_t lo, uint8_t hi, uint8_t& out) {
   if (v < 0 || v % 10000) return false;
@@ -468,15 +477,10 @@ GcodeError GcodeInterpreter<N, Arcs, Heater>::heater(const GcodeBlock& b, GcodeA
   if (m155) {
     if (!gcode_detail::whole_in(t, 0, 60, h.count)) return GcodeError::bad_interval;
   } else if (m301) {
-    h.gains_given = 0;
-    for (uint8_t k = 0; k < 3; ++k) {
-      const char letter = k == 0 ? 'P' : k == 1 ? 'I' : 'D';
-      if (!b.has(letter)) continue;
-      const int32_t v = b.get(letter);
-      if (v < 0 || v > (k == 2 ? 100000000l : 10000000l)) return GcodeError::bad_gains;
-      h.gains[k] = (uint32_t(v) + 5) / 10;
-      h.gains_given = uint8_t(h.gains_given | (1u << k));
-    }
+    using gcode_detail::gain;
+    h.gains_given = uint8_t(gain(b, 'P', 10000000l, h.gains[0]) | gain(b, 'I', 10000000l, h.gains[1]) << 1 |
+                            gain(b, 'D', 100000000l, h.gains[2]) << 2);
+    if (h.gains_given & 0x38) return GcodeError::bad_gains;
   } else if (needs_s || m303) {
     const bool given = (b.words & (s | r)) != 0;
     if (given && (t < m303 || t > int32_t(kGcodeMaxTarget) * 100)) return GcodeError::bad_temperature;

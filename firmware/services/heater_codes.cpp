@@ -65,10 +65,10 @@ bool wait_turn(const am::GcodeHeaterCommand& c) {
   } else if (m303) {
     const am::AutotuneState s = tuning()->state();
     apply = s == am::AutotuneState::done;  // "gains out of range" unless set_gains() takes them
-    failed = s == am::AutotuneState::failed_overshoot ? PSTR("autotune failed: overshoot")
-             : s == am::AutotuneState::failed_timeout ? PSTR("autotune failed: timeout")
-             : s == am::AutotuneState::failed_sensor  ? PSTR("autotune failed: sensor")
-                                                      : PSTR("autotune failed: gains out of range");
+    failed = s == am::AutotuneState::failed_overshoot ? PSTR("autotune: overshoot")
+             : s == am::AutotuneState::failed_timeout ? PSTR("autotune: timeout")
+             : s == am::AutotuneState::failed_sensor  ? PSTR("autotune: sensor")
+                                                      : PSTR("autotune: gains out of range");
   }
   waiting = false;
   if (m303 && autotune_end(apply)) {

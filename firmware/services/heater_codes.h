@@ -15,7 +15,8 @@
 //     M301            echo: p:<Kp> i:<Ki> d:<Kd> (the gains now), ok
 //     M303            T: lines once a second, then
 //                     `PID Autotune finished: Kp:<> Ki:<> Kd:<>` (applied), ok;
-//                     or `error: autotune failed: <why>` (heater off)
+//                     or `error: autotune: <overshoot, timeout, sensor, gains
+//                     out of range>` (heater off, the gains as they were)
 //   A wait (M109, M303) ends early when a byte arrives: `error: wait ended
 //   by the host` (M109 keeps its target, M303 leaves the heater off and the
 //   gains as they were); the line that came is then read as usual (M108 is

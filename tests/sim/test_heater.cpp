@@ -4,6 +4,8 @@
 // message. Times are simulated (cycles at 16 MHz).
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <regex>
 #include <string>
 
@@ -407,6 +409,48 @@ TEST(Heater, TheUnoHasNoHeater) {
   auto m = simtest::run("uno", {"M104 S200", "M105", "M303"}, 2);
   for (const sim::Response& r : m->serial().responses()) EXPECT_EQ(r.answer, "error: this board has no heater");
   EXPECT_EQ(m->serial().responses().size(), 3u);
+}
+
+}  // namespace
+
+namespace {
+
+// The heater's share of the m32 image, from its symbol table (avr-nm, of the
+// toolchain that built it): the service's functions, tables and texts (the
+// PID, safety, thermistor and filter code it inlines into heater::poll), the
+// core's out-of-line PID and autotune functions, the interpreter's heater
+// codes and their error texts; RAM: the service's variables.
+TEST(Heater, FlashAndRamOnTheM32) {
+  const std::string cmd = "avr-nm -S -C " + simtest::image("m32");
+  FILE* p = popen(cmd.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  const char* const kTextErrors[] = {"no_heater_text",       "heater_code_alone_text", "missing_temperature_text",
+                                     "bad_temperature_text", "bad_interval_text",      "bad_gains_text",
+                                     "bad_cycles_text"};
+  unsigned long flash = 0, ram = 0;
+  char buf[512];
+  while (fgets(buf, sizeof buf, p)) {
+    unsigned long addr = 0, size = 0;
+    char type = 0;
+    int used = 0;
+    if (std::sscanf(buf, "%lx %lx %c %n", &addr, &size, &type, &used) < 3) continue;
+    const std::string name(buf + used);
+    const bool heater = name.rfind("heater::", 0) == 0;
+    const bool code = std::strchr("tTwW", type) != nullptr;
+    bool ours = heater || name.find("HeaterPid::") != std::string::npos ||
+                name.find("RelayAutotune::") != std::string::npos || name.rfind("am::mul_div_round", 0) == 0 ||
+                name.find("AdcOversampler") != std::string::npos ||
+                (name.find("GcodeInterpreter") != std::string::npos && name.find(">::heater(") != std::string::npos);
+    for (const char* e : kTextErrors) ours = ours || name.find(e) != std::string::npos;
+    if (!ours) continue;
+    if (code) flash += size;
+    else if (heater && std::strchr("bBdD", type)) ram += size;
+  }
+  pclose(p);
+  std::printf("heater on the m32: %lu B of flash, %lu B of RAM\n", flash, ram);
+  EXPECT_GT(flash, 4000u);  // it is there
+  EXPECT_LE(flash, 8192u);
+  EXPECT_LE(ram, 200u);
 }
 
 }  // namespace
