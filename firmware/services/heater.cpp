@@ -29,7 +29,7 @@ struct FlashFetch {
 
 am::AdcOversampler<2> sampler;
 // The PID and an autotune never run at once, so they share their RAM (the
-// m32 has 2 KB; docs/boards.md): `tuning` says which one is alive, `kept`
+// m32 has 2 KB; docs/boards.md): `tuning_` says which one is alive, `kept`
 // holds the PID's gains meanwhile. Both are trivially copyable, so an
 // assignment starts the other member's life.
 union Control {
@@ -43,7 +43,7 @@ am::HeaterSafety safety;
 am::TempReading reading_{0, am::SensorState::open};
 int16_t target_, tune_target;
 uint8_t duty_;
-bool halted;
+bool halted;  // the fault latched and its line went out
 uint32_t next_sample, now_ms;
 uint32_t report_period, next_report;  // ticks; 0: no auto-report
 

@@ -4,6 +4,7 @@
 #include <avr/pgmspace.h>
 
 #include "../../hal/avr/uart.h"
+#include "../apps/cnc/reply.h"
 #include "../engine/clock.h"
 #include "heater.h"
 
@@ -14,12 +15,8 @@ constexpr int16_t kWaitWindow = am::centi_c(1);  // Marlin's TEMP_WINDOW
 bool waiting;
 uint32_t next_status;
 
-void ok() { hal::uart::write_P(PSTR("ok\n")); }
-void error(const char* progmem_text) {
-  hal::uart::write_P(PSTR("error: "));
-  hal::uart::write_P(progmem_text);
-  hal::uart::write('\n');
-}
+using reply::error;
+using reply::ok;
 
 void write_gain(const char* progmem_label, uint32_t milli) {
   hal::uart::write_P(progmem_label);
