@@ -10,6 +10,9 @@
 #include <string>
 
 #include <sim_avr.h>
+#include <sys/wait.h>
+
+#include <fstream>
 
 #include "sim_fixture.h"
 #include "thermal_plant.h"
@@ -402,6 +405,32 @@ TEST(Heater, PowerOnDrivesTheHeaterOffFirst) {
   for (const sim::PinEdge& e : temp_ok) EXPECT_FALSE(e.level);
   EXPECT_EQ(d[kTCCR2] & 0x30, 0);  // COM21:0 = 00: OC2 disconnected
   EXPECT_EQ(d[kTCCR2] & 0x4F, 0x4D);  // fast PWM, clk/128: 488 Hz once it is connected
+}
+
+// avrmotion-sim runs the hot end for an image with a heater: a hot start,
+// a fan, a fault at a time, and the report's "thermal" figures; on a board
+// without a heater the thermal options are a usage error.
+TEST(Heater, TheSimCommandTakesAPlantScenario) {
+  const std::string job = simtest::temp_path("heater-job.txt"), json = simtest::temp_path("heater.json");
+  { std::ofstream(job) << "M104 S200\nG4 P3\n"; }
+  const std::string sim = std::string("'") + AVRMOTION_SIM_EXE + "' --input '" + job + "'";
+  const std::string cmd = sim + " --board m32 --report '" + json +
+                          "' --thermal-initial 100 --thermal-fan 0.5@0.5 --thermal-fault open@1.5 2>/dev/null";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  const std::string report = simtest::slurp(json);
+  EXPECT_NE(report.find("\"messages\": [\"Error:Thermistor open, heater halted until reset\"]"), std::string::npos)
+      << report;
+  std::smatch t;
+  ASSERT_TRUE(std::regex_search(report, t,
+                                std::regex(R"("thermal": \{"peak_c": ([0-9.]+), "final_c": ([0-9.]+), )"
+                                           R"("final_block_c": ([0-9.]+), "fault": "open"\})")))
+      << report;
+  EXPECT_GT(std::stod(t[1]), 100.0);  // it heated from 100 C until the break
+  EXPECT_LT(std::stod(t[1]), 105.0);
+  const int rc = std::system((sim + " --board uno --report /dev/null --thermal-fault open@1 2>/dev/null").c_str());
+  EXPECT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) == 2) << rc;
+  std::remove(job.c_str());
+  std::remove(json.c_str());
 }
 
 // A board without a heater refuses the heater codes, clearly.
