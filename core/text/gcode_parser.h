@@ -95,6 +95,7 @@ namespace am {
   X(mode_not_available, "mode not available on this axis")                   \
   X(arcs_not_here, "G2/G3 arcs are not on the step engine yet")             \
   X(no_heater, "this board has no heater")                                   \
+  /* heater_code_alone .. bad_cycles: only a board with a heater meets them */ \
   X(heater_code_alone, "heater code must be alone on the line")            \
   X(missing_temperature, "code needs S (M109: S or R)")                     \
   X(bad_temperature, "temperature must be 0 .. 260 C")                       \

@@ -50,11 +50,17 @@ Interpreter& interpreter() {
   return instance;
 }
 // The error texts and their pointers in flash (docs/gcode.md: a switch over
-// PSTR()s would become a pointer table in RAM).
+// PSTR()s would become a pointer table in RAM). A board without a heater
+// can only meet no_heater of the heater's errors: the others point at an
+// empty text, and the linker drops theirs.
 #define AM_ERROR_TEXT(name, text) const char name##_text[] PROGMEM = text;
 AM_GCODE_ERRORS(AM_ERROR_TEXT)
 #undef AM_ERROR_TEXT
-#define AM_ERROR_POINTER(name, text) name##_text,
+const char kNoText[] PROGMEM = "";
+constexpr bool reachable(am::GcodeError e) {
+  return board::kHeater || e < am::GcodeError::heater_code_alone || e > am::GcodeError::bad_cycles;
+}
+#define AM_ERROR_POINTER(name, text) reachable(am::GcodeError::name) ? name##_text : kNoText,
 const char* const kErrorText[] PROGMEM = {AM_GCODE_ERRORS(AM_ERROR_POINTER)};
 #undef AM_ERROR_POINTER
 
