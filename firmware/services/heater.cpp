@@ -106,7 +106,6 @@ bool set_target(int16_t centi) {
 }
 int16_t target() { return tuning_ && control.tune.running() ? tune_target : target_; }
 am::TempReading reading() { return reading_; }
-uint8_t duty() { return duty_; }
 am::HeaterFault fault() { return safety.fault(); }
 const char* fault_text() { return kFaultText.text[uint8_t(safety.fault())]; }
 const am::PidGains& gains() { return control.pid.gains(); }

@@ -40,7 +40,6 @@ void poll();
 bool set_target(int16_t centi);
 int16_t target();  // what the heater holds now (an autotune's while it runs)
 am::TempReading reading();
-uint8_t duty();
 am::HeaterFault fault();
 const char* fault_text();  // in flash: write_P()
 
