@@ -16,8 +16,9 @@
 //   becomes a temperature (core/thermal/thermistor.h), the PID (or a running
 //   autotune) asks for a duty, HeaterSafety decides what is applied, and
 //   OC2 and TEMP_OK are set.
-//   A fault (any HeaterSafety rule) latches until reset: the heater is off,
-//   the target 0, an autotune stopped, and one line
+//   A fault (any HeaterSafety rule) latches until reset: the heater is off
+//   whatever the PID or an autotune asks, the target 0 (a waiting M303 ends
+//   at once and puts the PID back: heater_codes.h), and one line
 //   `Error:<fault text>, heater halted until reset` goes out at once;
 //   set_target() and autotune() refuse from then on.
 //   Auto-report (M155): every `seconds` one line `T:<cur> /<target> @:<duty>`.
