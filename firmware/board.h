@@ -4,6 +4,21 @@
 #pragma once
 #include AVRMOTION_BOARD_HEADER
 
+// What a board header may leave out. A board's own declaration wins:
+// `board::kHeater` finds the board's name first and looks into the namespaces
+// `board` uses only when the board has none (qualified lookup).
+namespace board_defaults {
+constexpr bool kHeater = false;  // no heater service, heater M-codes refused
+struct Heater;  // a heater's wiring (firmware/boards/m32.h), only with kHeater
+// The odometer (firmware/engine/odometer.h, about 1 KB of flash): M114
+// counts where the motors are while they move. Without it, where the
+// queued motion ends (Marlin's logical position).
+constexpr bool kOdometer = true;
+}  // namespace board_defaults
+namespace board {
+using namespace board_defaults;
+}  // namespace board
+
 // Every board lists its hardware claims; completing the type runs their
 // compile-time checks (hal/avr/claims.h).
 static_assert(sizeof(board::Claims) > 0, "board::Claims");

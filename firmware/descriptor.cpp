@@ -6,6 +6,19 @@
 
 namespace {
 
+// The heater's wiring, on a board that declares one (board.h: kHeater).
+template <bool Present, typename Hw = board::Heater>
+struct HeaterWiring {
+  static constexpr uint8_t pwm = am::kNoPin, adc = am::kNoPin, ok = am::kNoPin;
+};
+template <typename Hw>
+struct HeaterWiring<true, Hw> {
+  static constexpr uint8_t pwm = am::pin_code(Hw::Pwm::OutPin::port, Hw::Pwm::OutPin::bit);
+  static constexpr uint8_t adc = Hw::adc_channel;
+  static constexpr uint8_t ok = am::pin_code(Hw::TempOk::port, Hw::TempOk::bit);
+};
+using Heater = HeaterWiring<board::kHeater>;
+
 template <typename Set>
 struct Describe;
 
@@ -14,7 +27,7 @@ struct Describe<AxisSet<Axes...>> {
   static_assert(sizeof...(Axes) <= am::kMaxAxes, "the descriptor holds six axes");
   static constexpr am::BoardDescriptor make() {
     return am::BoardDescriptor{{'A', 'M', 'B', '1'}, AVRMOTION_BOARD_NAME, AVRMOTION_MCU_NAME,
-                               F_CPU, board::kBaud, uint8_t(sizeof...(Axes)), {0, 0, 0},
+                               F_CPU, board::kBaud, uint8_t(sizeof...(Axes)), Heater::pwm, Heater::adc, Heater::ok,
                                {Axes::descriptor()...}};
   }
 };

@@ -16,6 +16,7 @@
 
 #include "../core/motor/shield_wiring.h"
 #include "board_info.h"
+#include "thermal_plant.h"
 
 namespace sim {
 
@@ -107,6 +108,9 @@ Machine::Machine(const std::string& elf_path)
   serial_.reset(new SerialHost(avr_, board_.baud));
   attach_axes();
   attach_isr_profiler();
+  // A board with a heater has its thermistor plugged in, at room temperature
+  // until a ThermalPlant drives it.
+  if (board_.heater_pin != am::kNoPin) set_adc_millivolts(board_.heater_adc, thermistor_input_mv(ThermalParams(), 25));
 }
 
 Machine::~Machine() {
@@ -118,6 +122,7 @@ uint64_t Machine::cycles() const { return avr_->cycle; }
 
 size_t Machine::reset() {
   avr_reset(avr_);
+  for (const auto& again : after_reset_) again();
   return serial_->on_reset();
 }
 

@@ -16,6 +16,8 @@
 //   - watch_pwm():     duty (OCR value) of a timer's PWM channel, logged when
 //                      the firmware writes an OCR in a PWM mode and the value
 //                      changed (simavr's TIMER_IRQ_OUT_PWM0/1), cycle-stamped.
+// A board whose descriptor names a heater starts with its thermistor's ADC
+// input at 25 C (sim/thermal_plant.h drives it from a hot end instead).
 // run() always ends: when the stop condition holds, when the cycle budget is
 // spent (a hung image fails a test instead of hanging CI) or when the core
 // stops or crashes. A run in which simavr reported an error does not end
@@ -92,8 +94,10 @@ class Machine {
   // events as at power-on, RAM as it was (the startup code clears .bss).
   // Simulated time, the decoded positions and every measurement go on: the
   // motors do not move on a reset. Returns the host bytes dropped
-  // (SerialHost::on_reset()).
+  // (SerialHost::on_reset()). A reset clears simavr's cycle timers: a model
+  // that runs on one asks to be told (after_reset()) and registers it again.
   size_t reset();
+  void after_reset(std::function<void()> again) { after_reset_.push_back(std::move(again)); }
 
   // Runs until `stop` returns true (checked between instructions), until
   // `budget` more cycles have run, or until the CPU stops.
@@ -152,6 +156,7 @@ class Machine {
   avr_t* avr_ = nullptr;
   std::unique_ptr<SerialHost> serial_;
   std::vector<AxisTrace> axes_;
+  std::vector<std::function<void()>> after_reset_;
   std::vector<std::unique_ptr<PinHook>> pin_hooks_;
   std::vector<std::unique_ptr<PortHook>> port_hooks_;
   std::vector<StepDirDecoder> step_dir_;

@@ -8,12 +8,14 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "machine.h"
 #include "plot.h"
 #include "progress.h"
 #include "pty_run.h"
 #include "report.h"
+#include "thermal_plant.h"
 #include "vcd.h"
 
 namespace {
@@ -24,6 +26,7 @@ void usage() {
                "                     [--max-seconds S] [--progress]\n"
                "       avrmotion-sim (--board NAME | --elf FILE) --pty [--link PATH] [--speed N|max] [--linger S]\n"
                "                     [--report FILE] [--plot FILE.svg] [--vcd ...] [--max-seconds S] [--progress]\n"
+               "                     [--thermal-initial C] [--thermal-fault NAME@S] [--thermal-fan F@S]\n"
                "  --board NAME        run " AVRMOTION_FIRMWARE_DIR "/avrmotion-NAME.elf (uno, m32, m16, m16-8mhz)\n"
                "  --input FILE        command lines to send (default: standard input); '#' starts a comment\n"
                "  --report FILE       JSON report (default: standard output)\n"
@@ -40,6 +43,11 @@ void usage() {
                "  --speed N|max       simulated time N times wall-clock time while a client is there\n"
                "                      (default 1); max: as fast as it goes\n"
                "  --linger S          after a close, wait S s for a client to open it again (default 2)\n"
+               "  a board with a heater (m32) runs a simulated 40 W hot end (docs/heater.md):\n"
+               "  --thermal-initial C hot end and thermistor at C at reset (default 25)\n"
+               "  --thermal-fault NAME@S  from S seconds on: open, shorted (sensor), disconnected,\n"
+               "                      stuck_on (heater); may be given more than once\n"
+               "  --thermal-fan F@S   part fan at F (0..1) from S seconds on; more than once allowed\n"
                "exit: 0 ran to the end (--pty: the client closed, or SIGINT/SIGTERM), 2 bad usage or image, 3 budget spent, 4 CPU stopped,\n"
                "      5 simavr reported an error (a dropped event: the run is not valid)\n";
 }
@@ -51,6 +59,17 @@ std::string strip(const std::string& line) {
   return s.substr(a, s.find_last_not_of(" \t\r") - a + 1);
 }
 
+
+// "VALUE@SECONDS" -> value and seconds; false if malformed.
+bool split_at(const std::string& s, std::string& value, double& seconds) {
+  const size_t at = s.find('@');
+  if (at == std::string::npos || at == 0) return false;
+  value = s.substr(0, at);
+  char* end = nullptr;
+  seconds = std::strtod(s.c_str() + at + 1, &end);
+  return end && *end == '\0' && end != s.c_str() + at + 1 && seconds >= 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -58,6 +77,9 @@ int main(int argc, char** argv) {
   std::string link, speed_text;
   double max_seconds = 120, linger = 2;
   bool progress = false, pty = false, input_given = false, linger_given = false, budget_given = false;
+  sim::ThermalParams thermal;
+  std::vector<std::pair<double, sim::ThermalFault>> faults;
+  std::vector<std::pair<double, double>> fans;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const auto value = [&]() -> std::string {
@@ -80,6 +102,32 @@ int main(int argc, char** argv) {
     else if (a == "--link") link = value();
     else if (a == "--speed") speed_text = value();
     else if (a == "--linger") linger = std::atof(value().c_str()), linger_given = true;
+    else if (a == "--thermal-initial") thermal.initial_c = std::atof(value().c_str());
+    else if (a == "--thermal-fault" || a == "--thermal-fan") {
+      const std::string v = value();
+      std::string what;
+      double at = 0;
+      sim::ThermalFault f;
+      char* end = nullptr;
+      if (!split_at(v, what, at)) {
+        usage();
+        return 2;
+      }
+      if (a == "--thermal-fault") {
+        if (!sim::parse_thermal_fault(what, f)) {
+          usage();
+          return 2;
+        }
+        faults.push_back({at, f});
+      } else {
+        const double fraction = std::strtod(what.c_str(), &end);
+        if (*end || fraction < 0 || fraction > 1) {
+          usage();
+          return 2;
+        }
+        fans.push_back({at, fraction});
+      }
+    }
     else {
       usage();
       return 2;
@@ -98,6 +146,15 @@ int main(int argc, char** argv) {
     std::unique_ptr<sim::VcdRecorder> trace;
     sim::RunEnd end;
     sim::PtyStats stats;
+    // The hot end lives through every reset (a --pty client's open is one).
+    std::unique_ptr<sim::ThermalPlant> plant;
+    if (machine.board().heater_pin != am::kNoPin) {
+      plant.reset(new sim::ThermalPlant(machine, thermal));
+      for (const auto& f : faults) plant->inject_at(f.first, f.second);
+      for (const auto& f : fans) plant->fan_at(f.first, f.second);
+    } else if (!faults.empty() || !fans.empty()) {
+      throw std::runtime_error("--thermal-fault/--thermal-fan: this board has no heater");
+    }
     if (pty) {
       sim::PtyPort port(link);
       std::cerr << "avrmotion-sim: pty " << port.path() << (link.empty() ? "" : " (link " + link + ")") << std::endl;
@@ -123,10 +180,10 @@ int main(int argc, char** argv) {
     if (trace) trace->finish();
     const sim::PtyStats* pty_stats = pty ? &stats : nullptr;
     if (report.empty()) {
-      sim::write_report(std::cout, machine, end, pty_stats);
+      sim::write_report(std::cout, machine, end, pty_stats, plant.get());
     } else {
       std::ofstream out(report);
-      sim::write_report(out, machine, end, pty_stats);
+      sim::write_report(out, machine, end, pty_stats, plant.get());
     }
     const std::string title = pty ? "pty" : input == "-" ? "" : input;
     if (!plot.empty()) sim::write_run_plot(plot, machine, sim::PlotLabel{title, end});

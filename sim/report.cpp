@@ -64,7 +64,7 @@ std::string progress_line(Machine& m) {
   return buf;
 }
 
-void write_report(std::ostream& out, Machine& m, RunEnd end, const PtyStats* pty) {
+void write_report(std::ostream& out, Machine& m, RunEnd end, const PtyStats* pty, const ThermalPlant* plant) {
   const am::BoardDescriptor& b = m.board();
   SerialHost& serial = m.serial();
   out << "{\n";
@@ -114,6 +114,11 @@ void write_report(std::ostream& out, Machine& m, RunEnd end, const PtyStats* pty
     first = false;
   }
   out << "\n  },\n";
+  if (plant) {
+    out << "  \"thermal\": {\"peak_c\": " << number(plant->peak_sensor_c())
+        << ", \"final_c\": " << number(plant->sensor_c()) << ", \"final_block_c\": " << number(plant->block_c())
+        << ", \"fault\": " << quoted(thermal_fault_name(plant->fault())) << "},\n";
+  }
   out << "  \"stack_bytes\": " << m.stack_bytes() << ",\n";
   out << "  \"starvations\": " << m.starvations() << (pty ? ",\n" : "\n");
   if (pty) {

@@ -5,14 +5,17 @@
 #include <string>
 
 #include "machine.h"
+#include "thermal_plant.h"
 
 namespace sim {
 
 struct PtyStats;
 
 // `pty` (a --pty run) adds the "pty" object: sessions, bytes each way, the
-// pacing figures (docs/simulator-report.md).
-void write_report(std::ostream& out, Machine& m, RunEnd end, const PtyStats* pty = nullptr);
+// pacing figures (docs/simulator-report.md); `plant`, the hot end attached
+// to a board with a heater, the "thermal" key.
+void write_report(std::ostream& out, Machine& m, RunEnd end, const PtyStats* pty = nullptr,
+                  const ThermalPlant* plant = nullptr);
 
 // The report's name for how a run ended ("done", "timeout", "cpu_stopped",
 // "interrupted"); the picture's title uses it too.

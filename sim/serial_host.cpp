@@ -18,7 +18,12 @@ SerialHost::SerialHost(avr_t* avr, uint32_t baud)
   input_irq_ = avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_INPUT);
 }
 
-void SerialHost::add_line(const std::string& line) { script_.push_back(line); }
+void SerialHost::add_line(const std::string& line) {
+  script_.push_back(line);
+  if (!finished_) return;
+  finished_ = wait_sent_ = false;  // the script goes on: send it now, then WAIT again
+  send_next();
+}
 
 void SerialHost::send_raw(const std::string& bytes) {
   const bool idle = raw_pos_ >= raw_.size();
@@ -71,16 +76,18 @@ const std::string& SerialHost::banner() const {
   return received_.empty() ? none : received_.front();
 }
 
+bool SerialHost::is_ok(const std::string& answer) { return answer == "ok" || answer.rfind("ok ", 0) == 0; }
+
 size_t SerialHost::lines_ok() const {
   size_t n = 0;
-  for (const Response& r : responses_) n += r.answer == "ok";
+  for (const Response& r : responses_) n += is_ok(r.answer);
   return n;
 }
 
 std::vector<std::string> SerialHost::errors() const {
   std::vector<std::string> out;
   for (const Response& r : responses_) {
-    if (!r.answer.empty() && r.answer != "ok") out.push_back(r.answer);  // unanswered lines are no errors
+    if (!r.answer.empty() && !is_ok(r.answer)) out.push_back(r.answer);  // unanswered lines are no errors
   }
   return out;
 }
@@ -89,7 +96,7 @@ std::vector<std::string> SerialHost::messages() const {
   std::vector<std::string> out;
   for (size_t i = 1; i < received_.size(); ++i) {
     const std::string& l = received_[i];
-    if (l != "ok" && l.rfind("error", 0) != 0) out.push_back(l);
+    if (!is_ok(l) && l.rfind("error", 0) != 0) out.push_back(l);
   }
   return out;
 }
@@ -110,7 +117,8 @@ void SerialHost::on_output(avr_irq_t*, uint32_t value, void* self) {
 void SerialHost::on_line(const std::string& line) {
   const bool first = received_.empty();
   received_.push_back(line);
-  const bool answer = line == "ok" || line.rfind("error", 0) == 0;
+  received_cycles_.push_back(avr_->cycle);
+  const bool answer = is_ok(line) || line.rfind("error", 0) == 0;
   if (relay_) {
     if (answer && next_answer_ < responses_.size()) {
       responses_[next_answer_].answer = line;

@@ -1,11 +1,13 @@
 // The host at the other end of the firmware's UART: it sends a script of
 // command lines with the protocol's flow control (one line in flight; the next
-// line leaves after "ok" or "error: ..." came back), paced at the real byte
+// line leaves after "ok" or "error: ..." came back; "ok <report>", Marlin's
+// M105 answer, is an ok too), paced at the real byte
 // time of the baud rate, and records everything the firmware prints.
 //
 // The first line the firmware prints is its banner; nothing is sent before
 // it. After the last script line the host sends WAIT (not counted as a script
-// line), so finished() becomes true only once all motion has ended.
+// line), so finished() becomes true only once all motion has ended. A line
+// added once finished() is true is sent at once, and a new WAIT after it.
 //
 // Relay mode (avrmotion-sim --pty, pty_run.h): the lines come from a client
 // program instead of a script. The host then sends nothing of its own; it
@@ -25,7 +27,7 @@ namespace sim {
 
 struct Response {
   std::string line;     // the script line
-  std::string answer;   // "ok" or "error: ..."
+  std::string answer;   // "ok" (or "ok <report>") or "error: ..."
   uint64_t sent_cycle;  // first byte handed to the UART
   uint64_t answer_cycle;
 };
@@ -57,10 +59,13 @@ class SerialHost {
 
   const std::string& banner() const;
   const std::vector<std::string>& received() const { return received_; }
+  // The cycle each received line ended (its '\n'), one per received() line.
+  const std::vector<uint64_t>& received_cycles() const { return received_cycles_; }
   const std::vector<Response>& responses() const { return responses_; }
   size_t lines_sent() const { return lines_sent_; }
   size_t lines_pending() const { return script_.size(); }  // added, not sent yet
   size_t lines_ok() const;
+  static bool is_ok(const std::string& answer);  // "ok" or "ok <report>"
   std::vector<std::string> errors() const;
   // Lines that are neither the banner nor an answer (pos, warnings).
   std::vector<std::string> messages() const;
@@ -93,6 +98,7 @@ class SerialHost {
   uint64_t min_byte_interval_ = 0;
   std::string partial_;
   std::vector<std::string> received_;
+  std::vector<uint64_t> received_cycles_;
   std::vector<Response> responses_;
 };
 

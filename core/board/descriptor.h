@@ -43,7 +43,11 @@ struct BoardDescriptor {
   uint32_t f_cpu;
   uint32_t baud;
   uint8_t axis_count;
-  uint8_t reserved[3];
+  // The heater (kNoPin for all three on a board without one): its MOSFET's
+  // PWM pin, its thermistor's ADC channel (0..7), its TEMP_OK pin.
+  uint8_t heater_pin;
+  uint8_t heater_adc;
+  uint8_t temp_ok_pin;
   AxisDescriptor axes[kMaxAxes];
 };
 

@@ -8,7 +8,8 @@
 //   in steps per metre. A word for any other axis letter is no_such_axis.
 //   GcodeInterpreter<N, false> has no arcs: a G2/G3 motion is arcs_not_here
 //   and none of the arc arithmetic is linked (a machine that cannot run arcs
-//   keeps its flash).
+//   keeps its flash). GcodeInterpreter<N, A, false> has no heater: every
+//   heater M-code is no_heater and their checks are not linked.
 //
 //   execute(block, action) applies one block. On GcodeError::none the state
 //   has moved on (modes, feed, G92 offsets, position) and `action` says what
@@ -46,6 +47,8 @@
 //     enable, release  M17; M18 or M84 (every axis)
 //     set_mode         M350: mode[i] for every axis in `axes`
 //     program_end      M2/M30 (modes back to power-up, see below)
+//     heater           M104 M105 M108 M109 M155 M301 M303: `heater` says
+//                      what (GcodeHeaterCommand, see Heater codes below)
 //     none             a line that only sets modes or F, or is empty
 //   `axes` has bit i set for every axis the line named. After every accepted
 //   line target[] holds the machine position (steps) and coord[] the program
@@ -65,6 +68,20 @@
 //   Power-up modes: G0, G17, G90, G21, G94, M82, no feed (a feed move before
 //   the first F is bad_feed), all positions and offsets 0. M2/M30 restore
 //   G0, G17, G90, M82 and keep units, F, positions and offsets.
+//
+//   Heater codes. Their words are parameters, never axes (M303's C is the
+//   cycle count), and the line holds no other code (heater_code_alone).
+//     M104 S<C>          set the target (S0: off)
+//     M109 S<C> | R<C>   set it and wait (S: only while heating; R: either way)
+//     M105, M108         report; end a wait (the machine's business)
+//     M155 S<s>          auto-report every S whole seconds, 0 .. 60 (0: off)
+//     M301 [P][I][D]     set the given PID gains (Marlin's units), report
+//     M303 [S<C>][C<n>]  relay autotune at S (default 150 C), C cycles 3 .. 20
+//                        (default 5)
+//   Temperatures are 0 .. 260 C (kGcodeMaxTarget; M303 above 0), kept in
+//   0.01 C; gains P, I 0 .. 1000, D 0 .. 10000, kept in thousandths. A word
+//   the code does not take is unused_word; a missing S is
+//   missing_temperature. The state does not change.
 //
 //   Check order (the error for a line with several faults): parser errors
 //   left to right, then no_such_axis, the F word, axis_conflict,
@@ -121,7 +138,23 @@ struct GcodeState {
 };
 
 enum class GcodeActionKind : uint8_t {
-  none, move, arc, dwell, set_position, report_position, enable, release, set_mode, program_end,
+  none, move, arc, dwell, set_position, report_position, enable, release, set_mode, program_end, heater,
+};
+
+// The highest target a heater code takes: Marlin's HEATER_0_MAXTEMP (275 C,
+// core/thermal/safety.h) less HOTEND_OVERSHOOT (15 C), in 0.01 C.
+constexpr int16_t kGcodeMaxTarget = 26000;
+constexpr int16_t kGcodeAutotuneDefault = 15000;  // M303 without S: 150 C (Marlin)
+constexpr uint8_t kGcodeAutotuneCycles = 5;       // M303 without C (Marlin)
+
+// What a heater M-code asks (GcodeActionKind::heater, see Heater codes).
+struct GcodeHeaterCommand {
+  GcodeCode code;       // m104 m105 m108 m109 m155 m301 m303
+  bool wait_cooling;    // M109 R
+  uint8_t gains_given;  // M301: bit 0 P, 1 I, 2 D
+  uint8_t count;        // M155: seconds; M303: cycles
+  int16_t target;       // M104 M109 M303: 0.01 C
+  uint32_t gains[3];    // M301: P I D, thousandths
 };
 
 template <uint8_t N>
@@ -139,6 +172,7 @@ struct GcodeAction {
   int32_t radius;            // arc: 1/10000 mm
   uint32_t dwell_ms;         // dwell
   uint8_t mode[N];           // set_mode: M350 mode per named axis
+  GcodeHeaterCommand heater;  // heater
 };
 
 namespace gcode_detail {
@@ -159,7 +193,7 @@ inline uint16_t plane_offsets(Plane p) {
 
 }  // namespace gcode_detail
 
-template <uint8_t N, bool Arcs = true>
+template <uint8_t N, bool Arcs = true, bool Heater = true>
 class GcodeInterpreter {
   static_assert(N >= 1 && N <= 8, "one bit per axis in GcodeAction::axes");
 
@@ -199,6 +233,7 @@ class GcodeInterpreter {
 
  private:
   GcodeError arc(const GcodeBlock& b, const GcodeModal& m, GcodeAction<N>& a) const;
+  GcodeError heater(const GcodeBlock& b, GcodeAction<N>& a) const;
 
   // steps = length_to_steps(coord) + offset on axis i; false beyond int32.
   bool machine_steps(uint8_t i, int32_t coord, int32_t offset, int32_t& steps) const {
@@ -210,9 +245,10 @@ class GcodeInterpreter {
   GcodeState<N> state_;
 };
 
-template <uint8_t N, bool Arcs>
-GcodeError GcodeInterpreter<N, Arcs>::execute(const GcodeBlock& b, GcodeAction<N>& a) {
+template <uint8_t N, bool Arcs, bool Heater>
+GcodeError GcodeInterpreter<N, Arcs, Heater>::execute(const GcodeBlock& b, GcodeAction<N>& a) {
   using namespace gcode_detail;
+  if (b.group(GcodeGroup::machine) >= GcodeCode::m104) return heater(b, a);
   constexpr uint32_t kArcWords =
       gcode_letter_bit('I') | gcode_letter_bit('J') | gcode_letter_bit('K') | gcode_letter_bit('R');
   const uint32_t words = b.words;
@@ -356,8 +392,8 @@ GcodeError GcodeInterpreter<N, Arcs>::execute(const GcodeBlock& b, GcodeAction<N
 }
 
 // The arc from state_ (start) to a.coord[] (end), into a; m: the line's modes.
-template <uint8_t N, bool Arcs>
-GcodeError GcodeInterpreter<N, Arcs>::arc(const GcodeBlock& b, const GcodeModal& m, GcodeAction<N>& a) const {
+template <uint8_t N, bool Arcs, bool Heater>
+GcodeError GcodeInterpreter<N, Arcs, Heater>::arc(const GcodeBlock& b, const GcodeModal& m, GcodeAction<N>& a) const {
   using namespace gcode_detail;
   const uint32_t letters = plane_axes(m.plane);
   const uint16_t offset_letters = plane_offsets(m.plane);
@@ -394,6 +430,70 @@ GcodeError GcodeInterpreter<N, Arcs>::arc(const GcodeBlock& b, const GcodeModal&
   a.clockwise = m.motion == Motion::arc_cw;
   a.plane_axis[2] = index_of(char(letters >> 16));
   a.radius = int32_t(radius);
+  return GcodeError::none;
+}
+
+namespace gcode_detail {
+
+// M301's word `letter` into thousandths: 1 given, 0 absent, 8 beyond 0 .. max
+// (1/10000 units).
+inline uint8_t gain(const GcodeBlock& b, char letter, int32_t max, uint32_t& out) {
+  if (!b.has(letter)) return 0;
+  const int32_t v = b.get(letter);
+  out = (uint32_t(v) + 5) / 10;
+  return v < 0 || v > max ? 8 : 1;
+}
+
+// A whole number lo .. hi in a word's 1/10000 units, into out.
+inline bool whole_in(int32_t v, uint8_t lo, uint8_t hi, uint8_t& out) {
+  if (v < 0 || v % 10000) return false;
+  const int32_t n = v / 10000;
+  out = uint8_t(n);
+  return n >= lo && n <= hi;
+}
+
+}  // namespace gcode_detail
+
+// A heater M-code line (see Heater codes); nothing in the state changes.
+template <uint8_t N, bool Arcs, bool Heater>
+GcodeError GcodeInterpreter<N, Arcs, Heater>::heater(const GcodeBlock& b, GcodeAction<N>& a) const {
+  if (!Heater) return GcodeError::no_heater;
+  for (uint8_t g = 0; g < kGcodeGroups; ++g)
+    if (g != uint8_t(GcodeGroup::machine) && b.code[g] != GcodeCode::none) return GcodeError::heater_code_alone;
+  GcodeHeaterCommand& h = a.heater;
+  const GcodeCode code = h.code = b.group(GcodeGroup::machine);
+  const bool m109 = code == GcodeCode::m109, m155 = code == GcodeCode::m155;
+  const bool m301 = code == GcodeCode::m301, m303 = code == GcodeCode::m303;
+  const bool needs_s = m109 || m155 || code == GcodeCode::m104;
+  const uint32_t s = gcode_letter_bit('S'), r = gcode_letter_bit('R');
+  uint32_t takes = gcode_letter_bit('N');
+  if (needs_s) takes |= m109 && !b.has('S') ? r : s;
+  if (m301) takes |= gcode_letter_bit('P') | gcode_letter_bit('I') | gcode_letter_bit('D');
+  if (m303) takes |= s | gcode_letter_bit('C');
+  if (b.words & ~takes) return GcodeError::unused_word;
+  if (needs_s && !(b.words & (s | r))) return GcodeError::missing_temperature;
+  h.wait_cooling = b.has('R');
+  const int32_t t = b.get(h.wait_cooling ? 'R' : 'S');  // 1/10000
+  if (m155) {
+    if (!gcode_detail::whole_in(t, 0, 60, h.count)) return GcodeError::bad_interval;
+  } else if (m301) {
+    using gcode_detail::gain;
+    h.gains_given = uint8_t(gain(b, 'P', 10000000l, h.gains[0]) | gain(b, 'I', 10000000l, h.gains[1]) << 1 |
+                            gain(b, 'D', 100000000l, h.gains[2]) << 2);
+    if (h.gains_given & 0x38) return GcodeError::bad_gains;
+  } else if (needs_s || m303) {
+    const bool given = (b.words & (s | r)) != 0;
+    if (given && (t < m303 || t > int32_t(kGcodeMaxTarget) * 100)) return GcodeError::bad_temperature;
+    h.target = given ? int16_t((t + 50) / 100) : kGcodeAutotuneDefault;
+    h.count = kGcodeAutotuneCycles;
+    if (b.has('C') && !gcode_detail::whole_in(b.get('C'), 3, 20, h.count)) return GcodeError::bad_cycles;
+  }
+  for (uint8_t i = 0; i < N; ++i) {
+    a.coord[i] = state_.axis[i].coord;
+    a.target[i] = state_.axis[i].steps;
+  }
+  a.axes = 0;
+  a.kind = GcodeActionKind::heater;
   return GcodeError::none;
 }
 

@@ -24,8 +24,8 @@
 //   Word letters: G and M (codes; several on a line, at most one per modal
 //   group), N (line number: a whole number 0..2^31-1, first word of the line,
 //   kept as an integer, not in 1/10000), and the value words A B C E F I J K
-//   P R U X Y Z, each at most once. Every other letter is unsupported_word
-//   (S, T, Q, L, H, D, O, V, W: no supported code uses them). The letters
+//   D P R S U X Y Z, each at most once. Every other letter is
+//   unsupported_word (T, Q, L, H, O, V, W: no supported code uses them). The letters
 //   X Y Z E U A B C are axis words; which of them exist is the board's matter
 //   (the interpreter checks).
 //
@@ -34,9 +34,10 @@
 //     distance  G90 G91             units     G20 G21
 //     feed mode G94                 non-modal G4 G92
 //     stop      M2 M30              extruder  M82 M83
-//     machine   M17 M18 M84 M114 M350
+//     machine   M17 M18 M84 M114 M350, and the heater's M104 M105 M108
+//               M109 M155 M301 M303 (gcode_interpreter.h: heater codes)
 //   Code numbers are whole numbers without a decimal point ("G01" is G1);
-//   anything else ("G28", "G1.0", "G92.1", "M104") is unsupported_code.
+//   anything else ("G28", "G1.0", "G92.1", "M106") is unsupported_code.
 //
 // Layering of Marlin line numbers and checksums: split_checksum(line, end)
 // checks and cuts off a trailing "*<0..255>" (the XOR of every byte before the
@@ -92,7 +93,15 @@ namespace am {
   X(bad_mode, "mode must be 0, 1, 2, 16, 32 or 64")                          \
   X(axis_has_no_modes, "axis has no excitation modes")                       \
   X(mode_not_available, "mode not available on this axis")                   \
-  X(arcs_not_here, "G2/G3 arcs are not in this board's image")
+  X(arcs_not_here, "G2/G3 arcs are not in this board's image")             \
+  X(no_heater, "this board has no heater")                                   \
+  /* heater_code_alone .. bad_cycles: only a board with a heater meets them */ \
+  X(heater_code_alone, "heater code must be alone on the line")            \
+  X(missing_temperature, "code needs S (M109: S or R)")                     \
+  X(bad_temperature, "temperature must be 0 .. 260 C")                       \
+  X(bad_interval, "M155 S must be whole seconds 0 .. 60")                    \
+  X(bad_gains, "gains must be P, I 0 .. 1000, D 0 .. 10000")                \
+  X(bad_cycles, "M303 C must be 3 .. 20")
 
 #define AM_GCODE_ERROR_ENUM(name, text) name,
 enum class GcodeError : uint8_t { AM_GCODE_ERRORS(AM_GCODE_ERROR_ENUM) };
@@ -113,6 +122,7 @@ enum class GcodeCode : uint8_t {
   m2, m30,              // stop
   m82, m83,             // extruder
   m17, m18, m84, m114, m350,  // machine
+  m104, m105, m108, m109, m155, m301, m303,  // machine: the heater's
 };
 
 inline GcodeGroup gcode_group(GcodeCode c) {
@@ -139,9 +149,10 @@ constexpr uint32_t gcode_letter_bit(char upper_letter) {
 constexpr uint32_t kGcodeAxisLetters = gcode_letter_bit('X') | gcode_letter_bit('Y') | gcode_letter_bit('Z') |
                                        gcode_letter_bit('E') | gcode_letter_bit('U') | gcode_letter_bit('A') |
                                        gcode_letter_bit('B') | gcode_letter_bit('C');
-constexpr uint32_t kGcodeValueLetters = kGcodeAxisLetters | gcode_letter_bit('F') | gcode_letter_bit('I') |
-                                        gcode_letter_bit('J') | gcode_letter_bit('K') | gcode_letter_bit('N') |
-                                        gcode_letter_bit('P') | gcode_letter_bit('R');
+constexpr uint32_t kGcodeValueLetters = kGcodeAxisLetters | gcode_letter_bit('D') | gcode_letter_bit('F') |
+                                        gcode_letter_bit('I') | gcode_letter_bit('J') | gcode_letter_bit('K') |
+                                        gcode_letter_bit('N') | gcode_letter_bit('P') | gcode_letter_bit('R') |
+                                        gcode_letter_bit('S');
 
 // A value letter's slot in GcodeBlock::value: how many value letters come
 // before it (a constant where the letter is; the block is on the stack of
@@ -171,7 +182,9 @@ inline bool blank(char c) { return c == ' ' || c == '\t'; }
 // The code of G<n> / M<n>, none if unsupported. Comparisons,
 // not a switch: a switch over results becomes a lookup table, which avr-gcc
 // puts in RAM.
-inline GcodeCode code_of(char letter, int32_t n) {
+inline GcodeCode code_of(char letter, int32_t number) {
+  if (number < 0 || number > 999) return GcodeCode::none;
+  const uint16_t n = uint16_t(number);  // 16-bit compares: half the code of 32-bit ones on the AVR
   if (letter == 'G') {
     if (n <= 3) return GcodeCode(uint8_t(GcodeCode::g0) + n);
     if (n == 4) return GcodeCode::g4;
@@ -189,6 +202,11 @@ inline GcodeCode code_of(char letter, int32_t n) {
   if (n == 84) return GcodeCode::m84;
   if (n == 114) return GcodeCode::m114;
   if (n == 350) return GcodeCode::m350;
+  if (n == 104 || n == 105) return GcodeCode(uint8_t(GcodeCode::m104) + (n - 104));
+  if (n == 108 || n == 109) return GcodeCode(uint8_t(GcodeCode::m108) + (n - 108));
+  if (n == 155) return GcodeCode::m155;
+  if (n == 301) return GcodeCode::m301;
+  if (n == 303) return GcodeCode::m303;
   return GcodeCode::none;
 }
 

@@ -92,7 +92,7 @@ constexpr bool temp_ok(TempReading t, int16_t target, int16_t band = kTempOkBand
 
 class HeaterSafety {
  public:
-  explicit HeaterSafety(const SafetyLimits& limits = SafetyLimits()) : limits_(limits) {}
+  constexpr explicit HeaterSafety(const SafetyLimits& limits = SafetyLimits()) : limits_(limits) {}
 
   uint8_t check(uint32_t now_ms, TempReading t, int16_t target, uint8_t requested) {
     if (fault_ == HeaterFault::none) fault_ = evaluate(now_ms, t, target, requested);

@@ -92,7 +92,7 @@ void begin(const am::TrapezoidBlock& b, const planner::Steps& steps) {
   runs.start(b, board::kStepTimerHz);
   axis_mask = mask;
   dir_mask = planner::dirs_of(steps);
-  odometer::taken(steps, mask, dir_mask, b.events, dda, serial);
+  if (board::kOdometer) odometer::taken(steps, mask, dir_mask, b.events, dda, serial);
   exit_moving = b.exit > 0;
   generating = true;
 }
@@ -191,7 +191,7 @@ void pump() {
     am::StepSegment s = am::StepSegment::make(r.interval, r.count, axis_mask, dir_mask);
     s.block = serial;
     engine::push(s);
-    odometer::queued(r.count);
+    if (board::kOdometer) odometer::queued(r.count);
   }
   // From rest the engine starts on a full queue, or on all there is for now.
   if (engine::queue_full() || !generating) engine::start();

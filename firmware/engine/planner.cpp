@@ -100,6 +100,10 @@ int32_t position(uint8_t axis) { return positions[axis]; }
 
 void positions_now(int32_t (&units)[board::Axes::count]) {
   uint32_t made[board::Axes::count];
+  if (!board::kOdometer) {
+    for (uint8_t i = 0; i < board::Axes::count; ++i) units[i] = positions[i];
+    return;
+  }
   odometer::now(made);
   for (uint8_t i = 0; i < board::Axes::count; ++i)
     units[i] = positions[i] - board::Axes::units_for(i, int32_t(counted[i] - made[i]), false);

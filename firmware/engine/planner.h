@@ -58,7 +58,8 @@ int32_t position(uint8_t axis);
 // less the steps counted but not yet made (firmware/engine/odometer.h), one
 // instant for every axis. At rest it is position(). A coil axis's
 // unfinished move from rest may be off by the partial first step it has
-// not made yet (less than one step).
+// not made yet (less than one step). On a board without the odometer
+// (board::kOdometer) it is position().
 void positions_now(int32_t (&units)[board::Axes::count]);
 
 }  // namespace planner

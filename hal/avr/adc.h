@@ -12,6 +12,9 @@
 //   enabling (datasheet "Analog to Digital Converter", timing table).
 //   read8() returns ADCH as an unsigned byte: 0..255 for 0..Vref, never a
 //   signed type (a reading above 127 must not turn negative).
+//   read10() returns the whole 10-bit result, 0..1023: ADCL is read first
+//   (that locks ADCH until it is read: datasheet "ADCL and ADCH"), and the
+//   left-adjusted pair is shifted down.
 //
 //   Register names and bits are the same on the ATmega16/32 and 328P.
 #pragma once
@@ -41,6 +44,7 @@ inline uint8_t channel() { return uint8_t(ADMUX & kMuxMask); }
 inline void start() { ADCSRA |= _BV(ADSC); }
 inline bool busy() { return (ADCSRA & _BV(ADSC)) != 0; }
 inline uint8_t read8() { return ADCH; }
+inline uint16_t read10() { return uint16_t(ADCW >> 6); }  // ADCW: ADCL, then ADCH
 
 }  // namespace adc
 }  // namespace hal

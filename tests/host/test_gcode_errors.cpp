@@ -26,6 +26,7 @@ const am::GcodeAxis kM32[] = {{'X', 0, 1000000},
                               {'U', am::kModesUnipolar, 4096}};
 using Interp = am::GcodeInterpreter<5>;
 using NoArcs = am::GcodeInterpreter<5, false>;  // the Uno's (firmware/apps/cnc/gcode.cpp, board::kArcs)
+using NoHeater = am::GcodeInterpreter<5, false, false>;  // a board without a heater (the Uno's)
 using State = am::GcodeState<5>;
 
 template <typename I>
@@ -86,7 +87,7 @@ TEST(GcodeErrors, BadComment) {
   check(GcodeError::bad_comment, "G1 X15 (to fifteen");
   check(GcodeError::bad_comment, "G1 (a (b) c) X15");
 }
-TEST(GcodeErrors, UnsupportedWord) { check(GcodeError::unsupported_word, "G1 X15 S1000"); }
+TEST(GcodeErrors, UnsupportedWord) { check(GcodeError::unsupported_word, "G1 X15 Q1000"); }
 TEST(GcodeErrors, BadNumber) {
   check(GcodeError::bad_number, "G1 X1.2.3");
   check(GcodeError::bad_number, "G1 X");
@@ -103,7 +104,7 @@ TEST(GcodeErrors, BadLineNumber) {
 }
 TEST(GcodeErrors, UnsupportedCode) {
   check(GcodeError::unsupported_code, "G28");
-  check(GcodeError::unsupported_code, "M104 S200");
+  check(GcodeError::unsupported_code, "M106 S200");
 }
 TEST(GcodeErrors, ModalGroupConflict) {
   check(GcodeError::modal_group_conflict, "G0 G1 X15");
@@ -164,6 +165,85 @@ TEST(GcodeErrors, BadMode) {
 }
 TEST(GcodeErrors, AxisHasNoModes) { check(GcodeError::axis_has_no_modes, "M350 X16"); }
 TEST(GcodeErrors, ModeNotAvailable) { check(GcodeError::mode_not_available, "M350 U16"); }
+TEST(GcodeErrors, NoHeater) {
+  for (const char* line : {"M104 S200", "M105", "M109 R100", "M155 S1", "M301 P1", "M303", "M108"}) {
+    NoHeater g(kM32);
+    EXPECT_EQ(run(g, line), GcodeError::no_heater) << line;
+  }
+}
+TEST(GcodeErrors, HeaterCodeAlone) {
+  check(GcodeError::heater_code_alone, "G90 M104 S200");
+  check(GcodeError::heater_code_alone, "M105 G4 P1");
+  check(GcodeError::modal_group_conflict, "M104 S200 M114");  // one machine code a line
+}
+TEST(GcodeErrors, HeaterWords) {
+  check(GcodeError::unused_word, "M104 S200 X1");  // no move beside a heater code
+  check(GcodeError::unused_word, "M105 S1");
+  check(GcodeError::unused_word, "M109 S200 R190");
+  check(GcodeError::unused_word, "M301 S1");
+  check(GcodeError::missing_temperature, "M104");
+  check(GcodeError::missing_temperature, "M109");
+  check(GcodeError::missing_temperature, "M155");
+}
+TEST(GcodeErrors, BadTemperature) {
+  check(GcodeError::bad_temperature, "M104 S-1");
+  check(GcodeError::bad_temperature, "M104 S260.01");
+  check(GcodeError::bad_temperature, "M109 R300");
+  check(GcodeError::bad_temperature, "M303 S0");
+}
+TEST(GcodeErrors, BadInterval) {
+  check(GcodeError::bad_interval, "M155 S61");
+  check(GcodeError::bad_interval, "M155 S0.5");
+  check(GcodeError::bad_interval, "M155 S-1");
+}
+TEST(GcodeErrors, BadGains) {
+  check(GcodeError::bad_gains, "M301 P1000.1");
+  check(GcodeError::bad_gains, "M301 I-1");
+  check(GcodeError::bad_gains, "M301 P22.2 I1.08 D10001");
+}
+TEST(GcodeErrors, BadCycles) {
+  check(GcodeError::bad_cycles, "M303 S200 C2");
+  check(GcodeError::bad_cycles, "M303 C21");
+  check(GcodeError::bad_cycles, "M303 C4.5");
+}
+
+// What the accepted heater codes carry.
+TEST(GcodeHeaterCodes, Values) {
+  Interp g(kM32);
+  am::GcodeAction<5> a;
+  ASSERT_EQ(g.run("M104 S215.5", a), GcodeError::none);
+  EXPECT_EQ(a.kind, am::GcodeActionKind::heater);
+  EXPECT_EQ(a.heater.code, am::GcodeCode::m104);
+  EXPECT_EQ(a.heater.target, 21550);
+  ASSERT_EQ(g.run("M104 S0", a), GcodeError::none);
+  EXPECT_EQ(a.heater.target, 0);
+  ASSERT_EQ(g.run("M104 S260", a), GcodeError::none);
+  EXPECT_EQ(a.heater.target, 26000);
+  ASSERT_EQ(g.run("M109 R180.004", a), GcodeError::none);
+  EXPECT_EQ(a.heater.code, am::GcodeCode::m109);
+  EXPECT_TRUE(a.heater.wait_cooling);
+  EXPECT_EQ(a.heater.target, 18000);
+  ASSERT_EQ(g.run("N5 M109 S200", a), GcodeError::none);
+  EXPECT_FALSE(a.heater.wait_cooling);
+  ASSERT_EQ(g.run("M155 S60", a), GcodeError::none);
+  EXPECT_EQ(a.heater.count, 60);
+  ASSERT_EQ(g.run("M301 P22.2 D114", a), GcodeError::none);
+  EXPECT_EQ(a.heater.gains_given, 5);
+  EXPECT_EQ(a.heater.gains[0], 22200u);
+  EXPECT_EQ(a.heater.gains[2], 114000u);
+  ASSERT_EQ(g.run("M301", a), GcodeError::none);
+  EXPECT_EQ(a.heater.gains_given, 0);
+  ASSERT_EQ(g.run("M303", a), GcodeError::none);
+  EXPECT_EQ(a.heater.target, 15000);
+  EXPECT_EQ(a.heater.count, 5);
+  ASSERT_EQ(g.run("M303 S210 C8", a), GcodeError::none);  // C is the cycle count, not an axis
+  EXPECT_EQ(a.heater.target, 21000);
+  EXPECT_EQ(a.heater.count, 8);
+  ASSERT_EQ(g.run("m105", a), GcodeError::none);
+  EXPECT_EQ(a.heater.code, am::GcodeCode::m105);
+  ASSERT_EQ(g.run("M108", a), GcodeError::none);
+  EXPECT_EQ(a.heater.code, am::GcodeCode::m108);
+}
 
 // A line with an error after a valid part changes nothing either: the modal
 // codes and F at its start are not applied.
@@ -214,6 +294,7 @@ TEST(GcodeErrors, DocumentedTableMatchesTheCode) {
     const GcodeError e = by_name[name[0]];
     EXPECT_EQ(message[0], am::gcode_error_message(e)) << name[0];
     if (e == GcodeError::arcs_not_here) check_row(NoArcs(kM32), example, e, name[0]);
+    else if (e == GcodeError::no_heater) check_row(NoHeater(kM32), example, e, name[0]);
     else check_row(Interp(kM32), example, e, name[0]);
     ++rows[name[0]];
   }

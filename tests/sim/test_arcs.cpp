@@ -1,4 +1,4 @@
-// G2/G3 on the real m32 image (1000 steps/mm): full circles both ways, R
+// G2/G3 on the real m32-cnc image (1000 steps/mm): full circles both ways, R
 // arcs short and long, a helix, an arc in G18 and one with the extruder,
 // each separated by a dwell so its steps can be told apart. Every arc ends
 // exactly on its end point; every stepped point (the edges of one step
@@ -89,7 +89,7 @@ TEST(Arcs, EveryArcEndsOnItsPointAndEveryStepStaysNearItsCircle) {
     lines.push_back(a.line);
     lines.push_back("G4 P0.05");
   }
-  auto m = simtest::run("m32", lines, 60);
+  auto m = simtest::run("m32-cnc", lines, 60);
   EXPECT_TRUE(m->serial().errors().empty()) << m->serial().errors().front();
   EXPECT_EQ(m->starvations(), 0);
 
@@ -124,7 +124,7 @@ TEST(Arcs, AFullCircleRunsAtItsFeedWithoutStopping) {
   // cruise, the distance covered (the chord of the window's ends, 0.02 %
   // short of the arc) is the feed within 1 %; the whole circle takes its
   // length over the feed plus one acceleration time, within 1 %.
-  auto m = simtest::run("m32", {"G21 G90 G17", "G2 X0 Y0 I10 J0 F1200"}, 30);
+  auto m = simtest::run("m32-cnc", {"G21 G90 G17", "G2 X0 Y0 I10 J0 F1200"}, 30);
   EXPECT_EQ(m->starvations(), 0);
   const std::vector<Point> pts = path_points(*m);
   ASSERT_GT(pts.size(), 1000u);
@@ -156,7 +156,7 @@ TEST(Arcs, AnArcFasterThanItsChordsArriveSlowsDownWithoutStarving) {
   // at a quarter step of sag): more than the main loop computes and plans.
   // The path runs at the pace they come, its look-ahead dry, the queue
   // never empty under a block that ends at speed, and the circle closes.
-  auto m = simtest::run("m32", {"G21 G90 G17", "G2 X0 Y0 I1 J0 F3000"}, 30);
+  auto m = simtest::run("m32-cnc", {"G21 G90 G17", "G2 X0 Y0 I1 J0 F3000"}, 30);
   EXPECT_EQ(m->starvations(), 0);
   EXPECT_TRUE(m->serial().errors().empty());
   const std::vector<Point> pts = path_points(*m);
@@ -165,4 +165,28 @@ TEST(Arcs, AnArcFasterThanItsChordsArriveSlowsDownWithoutStarving) {
   std::printf("full circle r 1 mm asked at 50 mm/s: %.3f s, %.1f mm/s\n", seconds, 2 * M_PI / seconds);
   EXPECT_EQ(m->axis('X')->steps(), 0.0);
   EXPECT_EQ(m->axis('Y')->steps(), 0.0);
+}
+
+TEST(Arcs, IllFormedArcsAreRefusedAndChangeNothing) {
+  // Each refusal answered once, nothing moves, the two reports agree; the
+  // printer's image (m32) has no arcs at all.
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"G2 X3 Y2 I5 J0", "error: arc end point not on the circle"},
+      {"G3 X3 Y2", "error: arc needs R or the plane's I/J/K"},
+      {"G2 X1 Y2 R3", "error: R arc cannot end where it starts"},
+      {"G2 X1 Y2 I0 J0", "error: arc radius is zero"},
+  };
+  std::vector<std::string> lines = {"G21 G90", "G1 X1 Y2 F600", "WAIT", "M114"};
+  for (const auto& b : bad) lines.push_back(b.first);
+  lines.push_back("M114");
+  auto m = simtest::run("m32-cnc", lines, 20);
+  const std::vector<sim::Response>& r = m->serial().responses();
+  ASSERT_EQ(r.size(), lines.size());
+  for (size_t i = 0; i < bad.size(); ++i) EXPECT_EQ(r[4 + i].answer, bad[i].second) << bad[i].first;
+  const std::vector<std::string> msgs = m->serial().messages();
+  ASSERT_EQ(msgs.size(), 2u);
+  EXPECT_EQ(msgs[0], msgs[1]);
+  EXPECT_EQ(m->axis('X')->steps(), 1000.0);
+  auto printer = simtest::run("m32", {"G2 X3 Y2 I1 J0 F600"}, 5);
+  EXPECT_EQ(printer->serial().responses().at(0).answer, "error: G2/G3 arcs are not in this board's image");
 }

@@ -48,6 +48,7 @@ TEST_P(Boot, EveryAxisMovesExactlyAsCommanded) {
 INSTANTIATE_TEST_SUITE_P(Images, Boot,
                          ::testing::Values(Image{"uno", "uno", "atmega328p", 16000000},
                                            Image{"m32", "m32", "atmega32", 16000000},
+                                           Image{"m32-cnc", "m32-cnc", "atmega32", 16000000},
                                            Image{"m16", "m16", "atmega16", 16000000},
                                            Image{"m16-8mhz", "m16", "atmega16", 8000000}),
                          [](const ::testing::TestParamInfo<Image>& info) {

@@ -213,7 +213,7 @@ TEST(Path, ShortChordsStreamWithoutStoppingAtAVertex) {
 }
 
 TEST(Path, ParseAndPlanCyclesPerSlicerLine) {
-  // Five lines of a slicer's kind on an idle m32 (the ring of 5 never fills,
+  // Five lines of a slicer's kind on an idle m32 (the ring of 5 holds them all,
   // the first block waits for its start): the time from a line's first byte
   // to its answer, less the bytes' own time on the wire (the line, its end,
   // and "ok\n"), is what the firmware spends parsing and planning it.

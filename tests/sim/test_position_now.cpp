@@ -68,14 +68,14 @@ std::vector<std::string> with_reports(std::vector<std::string> lines, int report
 }  // namespace
 
 TEST(PositionNow, OneAxisMoveReportsWhereThePinsAre) {
-  const int moving = check_reports("m32", with_reports({"G21 G90", "G1 X20 F1200"}, 40), "XYZE");
+  const int moving = check_reports("m32-cnc", with_reports({"G21 G90", "G1 X20 F1200"}, 40), "XYZE");
   std::printf("one axis: %d of 40 reports inside the move\n", moving);
   EXPECT_GE(moving, 20);
 }
 
 TEST(PositionNow, CoordinatedBlocksReportEveryAxisOnItsLine) {
   const int moving =
-      check_reports("m32", with_reports({"G21 G90 M82", "G1 X12 Y-7.5 Z0.25 E3 F900"}, 40), "XYZE");
+      check_reports("m32-cnc", with_reports({"G21 G90 M82", "G1 X12 Y-7.5 Z0.25 E3 F900"}, 40), "XYZE");
   std::printf("coordinated: %d of 40 reports inside the move\n", moving);
   EXPECT_GE(moving, 20);
 }
@@ -85,7 +85,7 @@ TEST(PositionNow, APolylineReportsAcrossItsBlocks) {
   std::vector<std::string> lines = {"G21 G90"};
   for (int k = 1; k <= 12; ++k)
     lines.push_back("G1 X" + std::to_string(k) + " Y" + std::to_string(2 * k + k % 2) + " F1500");
-  const int moving = check_reports("m32", with_reports(lines, 40), "XY");
+  const int moving = check_reports("m32-cnc", with_reports(lines, 40), "XY");
   std::printf("polyline: %d of 40 reports inside the motion\n", moving);
   EXPECT_GE(moving, 10);
 }

@@ -2,7 +2,6 @@
 
 #include <avr/pgmspace.h>
 
-#define AM_TEXT(s) PSTR(s)
 #include "../../../core/motion/arc_chords.h"
 #include "../../../core/text/gcode_interpreter.h"
 #include "../../../hal/avr/uart.h"
@@ -10,6 +9,7 @@
 #include "../../board.h"
 #include "../../engine/path.h"
 #include "../../engine/planner.h"
+#include "../../services/heater_codes.h"
 #include "reply.h"
 
 namespace gcode {
@@ -44,12 +44,28 @@ const am::GcodeAxis AxisTable<AxisSet<A...>>::value[sizeof...(A)] = {
     am::GcodeAxis{A::name, modes_of<A>(0, 0), A::descriptor().steps_per_m * OwnUnits<A>::per_full_step}...};
 
 // Built on first use, so a board without G-code links none of it. A board
-// without arcs (board::kArcs: flash) refuses G2/G3 whole (arcs_not_here).
-using Interpreter = am::GcodeInterpreter<kAxes, board::kArcs>;
+// without arcs (board::kArcs: flash) refuses G2/G3 whole (arcs_not_here),
+// one without a heater its M-codes (no_heater).
+using Interpreter = am::GcodeInterpreter<kAxes, board::kArcs, board::kHeater>;
 Interpreter& interpreter() {
   static Interpreter instance(AxisTable<board::Axes>::value);
   return instance;
 }
+// The error texts and their pointers in flash (docs/gcode.md: a switch over
+// PSTR()s would become a pointer table in RAM). A board without a heater
+// can only meet no_heater of the heater's errors: the others point at an
+// empty text, and the linker drops theirs.
+#define AM_ERROR_TEXT(name, text) const char name##_text[] PROGMEM = text;
+AM_GCODE_ERRORS(AM_ERROR_TEXT)
+#undef AM_ERROR_TEXT
+const char kNoText[] PROGMEM = "";
+constexpr bool reachable(am::GcodeError e) {
+  return board::kHeater || e < am::GcodeError::heater_code_alone || e > am::GcodeError::bad_cycles;
+}
+#define AM_ERROR_POINTER(name, text) reachable(am::GcodeError::name) ? name##_text : kNoText,
+const char* const kErrorText[] PROGMEM = {AM_GCODE_ERRORS(AM_ERROR_POINTER)};
+#undef AM_ERROR_POINTER
+
 am::GcodeAction<kAxes> action;  // the accepted line's, until execute() has run it
 bool pending;
 int32_t coord_before[kAxes];  // program position before the pending line
@@ -150,6 +166,14 @@ bool arc_chords() {
   return false;
 }
 
+// A heater M-code (only a board with a heater has them): the service prints
+// its whole answer, M105's `ok T:...` included.
+bool heater_code() {
+  if (board::kHeater && !heater::run(action.heater)) return false;
+  pending = false;
+  return true;
+}
+
 }  // namespace
 
 bool claims(const char* line) {
@@ -170,7 +194,7 @@ bool accept(const char* line) {
   }
   const am::GcodeError e = interpreter().run(line, action);
   if (e != am::GcodeError::none) {
-    reply::error(am::gcode_error_message(e));  // a flash string: AM_TEXT is PSTR here
+    reply::error(reinterpret_cast<const char*>(pgm_read_word(&kErrorText[uint8_t(e)])));
     return false;
   }
   // What the machine cannot run is refused now, with the state put back.
@@ -202,6 +226,7 @@ bool accept(const char* line) {
 
 bool execute() {
   if (!pending) return true;
+  if (action.kind == am::GcodeActionKind::heater) return heater_code();
   switch (action.kind) {
     case am::GcodeActionKind::move:
       if (!move()) return false;

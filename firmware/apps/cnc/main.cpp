@@ -1,6 +1,7 @@
 // avrmotion firmware entry point: brings the board to its safe power-on state
-// (coils off, step lines low, drivers disabled), greets the host and serves the
-// protocol forever. All timing-critical work happens in the step interrupt.
+// (coils off, step lines low, drivers disabled, a heater off), greets the host
+// and serves the protocol (and a board's heater service) forever. All
+// timing-critical work happens in the step interrupt.
 #include <avr/interrupt.h>
 
 #include "../../../hal/avr/uart.h"
@@ -8,14 +9,19 @@
 #include "protocol.h"
 #include "../../engine/clock.h"
 #include "../../engine/step_engine.h"
+#include "../../services/heater.h"
 
 int main() {
   hal_disable_jtag();
   board::init();
   engine::init();
+  if (board::kHeater) heater::init();  // its first reading takes 1.9 ms: before the clock runs
   clock::init();
   hal::uart::init(F_CPU, board::kBaud);
   sei();
   protocol::banner();
-  for (;;) protocol::poll();
+  for (;;) {
+    protocol::poll();
+    if (board::kHeater) heater::poll();
+  }
 }

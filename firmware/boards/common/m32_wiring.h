@@ -1,0 +1,64 @@
+// The ATmega32 printer/CNC controller's wiring (seed-002), shared by the two
+// programs it can run: firmware/boards/m32.h (the printer: hot end, G-code
+// lines) and firmware/boards/m32-cnc.h (the mill: arcs, positions counted
+// mid-move). 32 KB of flash hold one or the other set beside the G-code
+// machine, not both.
+//
+// X Y Z E on step/dir drivers: steps PC0/PC2/PC4/PC6, directions
+// PC1/PC3/PC5/PC7, enables PB0..PB3 (active low). Endstops (switch to ground,
+// pulled up): X/Y/Z min on PD2/PD3/PD4, max on PA5/PA6/PA7. Thermistor on
+// ADC2 (PA2), heater MOSFET on OC2 (PD7), TEMP_OK output on PD6. One step is
+// one basic length unit of 1 um (the seed's BLU_PER_MM = 1000). The seed's
+// four axes only: the RAM (2 KB) goes to the look-ahead ring and the heater.
+#pragma once
+#include "../../../hal/avr/claims.h"
+#include "../../../hal/avr/gpio.h"
+#include "../../axes/axis_set.h"
+#include "../../axes/step_dir_axis.h"
+
+namespace m32_wiring {
+
+using hal::Pin;
+using Axes = AxisSet<StepDirAxis<'X', Pin<'C', 0>, Pin<'C', 1>, Pin<'B', 0>, true, 1000000>,
+                     StepDirAxis<'Y', Pin<'C', 2>, Pin<'C', 3>, Pin<'B', 1>, true, 1000000>,
+                     StepDirAxis<'Z', Pin<'C', 4>, Pin<'C', 5>, Pin<'B', 2>, true, 1000000>,
+                     StepDirAxis<'E', Pin<'C', 6>, Pin<'C', 7>, Pin<'B', 3>, true, 1000000>>;
+
+// Hardware claims (hal/avr/claims.h, checked when the image compiles): Timer1
+// is the step clock, the UART talks to the host, Timer0 is the time base
+// (firmware/engine/clock.h): its own, in normal mode with prescaler 64, one
+// tick per 4 us, an overflow interrupt every 16384 cycles (29 of them, 0.2 %
+// of the CPU); OC0 (PB3, axis E's enable) stays a port pin. The printer's
+// heater takes Timer2 with OC2 (PD7) and the ADC.
+constexpr uint32_t kStepClock = hal::claim::timer1;
+constexpr uint32_t kClock = hal::claim::timer0_ovf | hal::claim::timer0 | hal::claim::timer0_div64;
+
+constexpr uint32_t kBaud = 115200;
+constexpr uint32_t kStepTimerHz = F_CPU;
+constexpr uint32_t kMaxStepRate = 40000;
+constexpr uint32_t kDefaultRate = 4000;    // steps/s (4 mm/s)
+constexpr uint32_t kDefaultAccel = 500000;  // steps/s^2 (500 mm/s^2)
+// Fastest ramp the planner keeps ahead of, with any axis at 40 kHz
+// (tests/sim/test_invariants.cpp; docs/step-engine.md).
+constexpr uint32_t kMaxAccel = 800000;  // steps/s^2
+constexpr uint8_t kStepPulsePadCycles = 24;  // >= 1.9 us with the bookkeeping (DRV8825)
+constexpr uint8_t kTimerPulseCycles = 0;  // no timer-pulsed axis
+
+// First thing main() runs: the heater's MOSFET gate is driven low before
+// anything else (until then the pin floats; the board's gate pull-down holds
+// it off), on either program.
+inline void init() {
+  Pin<'D', 7>::low();  // heater off before the pin becomes an output
+  Pin<'D', 7>::output();
+  Pin<'D', 6>::low();  // TEMP_OK low: not at temperature
+  Pin<'D', 6>::output();
+  Pin<'D', 2>::input_pullup();
+  Pin<'D', 3>::input_pullup();
+  Pin<'D', 4>::input_pullup();
+  Pin<'A', 5>::input_pullup();
+  Pin<'A', 6>::input_pullup();
+  Pin<'A', 7>::input_pullup();
+  Axes::init();
+}
+
+}  // namespace m32_wiring
