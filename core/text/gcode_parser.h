@@ -122,7 +122,7 @@ enum class GcodeCode : uint8_t {
   m2, m30,              // stop
   m82, m83,             // extruder
   m17, m18, m84, m114, m350,  // machine
-  m104, m105, m108, m109, m155, m301, m303,  // machine: the heater's
+  m104, m105, m108, m109, m155, m301, m303, m500,  // machine: the heater's (M500: its gains)
 };
 
 inline GcodeGroup gcode_group(GcodeCode c) {
@@ -207,6 +207,7 @@ inline GcodeCode code_of(char letter, int32_t number) {
   if (n == 155) return GcodeCode::m155;
   if (n == 301) return GcodeCode::m301;
   if (n == 303) return GcodeCode::m303;
+  if (n == 500) return GcodeCode::m500;
   return GcodeCode::none;
 }
 

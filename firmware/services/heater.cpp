@@ -8,6 +8,7 @@
 #include "../../core/thermal/adc_filter.h"
 #include "../../core/thermal/thermistor.h"
 #include "../../hal/avr/adc.h"
+#include "../../hal/avr/eeprom.h"
 #include "../../hal/avr/uart.h"
 #include "../board.h"
 #include "../engine/clock.h"
@@ -16,6 +17,23 @@ namespace heater {
 namespace {
 
 using Hw = board::Heater;
+
+// The gains M500 stores, at the start of the EEPROM: a tag that says what
+// the bytes are (an erased EEPROM reads 0xFF), the gains, and a sum of
+// their bytes that a torn write would break.
+constexpr uint16_t kStoredAt = 0;
+constexpr uint16_t kStoredTag = 0xA701;
+struct Stored {
+  uint16_t tag;
+  am::PidGains gains;
+  uint16_t sum;
+};
+uint16_t checksum(const am::PidGains& g) {
+  const uint8_t* b = reinterpret_cast<const uint8_t*>(&g);
+  uint16_t sum = 0x5A5A;
+  for (uint8_t i = 0; i < sizeof g; ++i) sum = uint16_t((sum << 1 | sum >> 15) ^ b[i]);
+  return sum;
+}
 using Table = am::ThermistorTable<am::kHotendThermistorPoints>;
 const Table kTable PROGMEM = Table(am::kHotendThermistor);
 const am::HeaterFaultText kFaultText PROGMEM = am::kHeaterFaultText;
@@ -73,7 +91,10 @@ void sample_period() {
 
 void init() {
   Hw::Pwm::init();
-  set_gains(am::PidGains{22200, 1080, 114000});  // Marlin's DEFAULT_Kp/Ki/Kd
+  Stored stored;
+  hal::eeprom::read(kStoredAt, &stored, sizeof stored);
+  if (stored.tag != kStoredTag || stored.sum != checksum(stored.gains) || !set_gains(stored.gains))
+    set_gains(am::PidGains{22200, 1080, 114000});  // Marlin's DEFAULT_Kp/Ki/Kd
   hal::adc::init(hal::adc::Prescaler::div128, false);  // 125 kHz: 104 us a conversion
   hal::adc::select(Hw::adc_channel);
   // A first reading before anything asks for one (16 conversions, 1.9 ms).
@@ -85,6 +106,11 @@ void init() {
   convert();
   hal::adc::start();
   next_sample = clock::ms(kPeriodMs);  // the clock starts at 0 after this
+}
+
+void store_gains() {
+  const Stored stored{kStoredTag, gains(), checksum(gains())};
+  hal::eeprom::update(kStoredAt, &stored, sizeof stored);
 }
 
 void poll() {

@@ -49,6 +49,10 @@ const char* fault_text();  // in flash: write_P()
 // nothing changes outside its ranges).
 const am::PidGains& gains();
 bool set_gains(const am::PidGains& g);
+// M500: the gains into the EEPROM (a tag and a checksum with them); init()
+// takes them back on every reset when the tag and the checksum hold and
+// set_gains() accepts them, Marlin's defaults otherwise.
+void store_gains();
 // Starts an autotune (target, cycles; the rest Marlin's defaults); false
 // once a fault has latched. While it is on, the PID rests with its gains
 // kept; it ends with autotune_end(): `apply` and a finished tune whose gains

@@ -118,6 +118,11 @@ bool run(const am::GcodeHeaterCommand& c) {
       ok();
       return true;
     }
+    case am::GcodeCode::m500:
+      store_gains();
+      write_gains(PSTR("echo:Settings Stored: "), gains());
+      ok();
+      return true;
     default:  // M108: nothing waits when it is read
       ok();
       return true;

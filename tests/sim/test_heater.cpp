@@ -9,6 +9,7 @@
 #include <regex>
 #include <string>
 
+#include <avr_eeprom.h>
 #include <sim_avr.h>
 #include <sys/wait.h>
 
@@ -435,9 +436,41 @@ TEST(Heater, TheSimCommandTakesAPlantScenario) {
 
 // A board without a heater refuses the heater codes, clearly.
 TEST(Heater, TheUnoHasNoHeater) {
-  auto m = simtest::run("uno", {"M104 S200", "M105", "M303"}, 2);
+  auto m = simtest::run("uno", {"M104 S200", "M105", "M303", "M500"}, 2);
   for (const sim::Response& r : m->serial().responses()) EXPECT_EQ(r.answer, "error: this board has no heater");
-  EXPECT_EQ(m->serial().responses().size(), 3u);
+  EXPECT_EQ(m->serial().responses().size(), 4u);
+}
+
+// M500 keeps M301's gains through a power cycle: the EEPROM of one run,
+// copied into a fresh machine before it starts, is what that one boots
+// with. An EEPROM that holds something else (erased, or one byte of the
+// gains changed) gives Marlin's defaults.
+TEST(Heater, M500StoresTheGainsAndABootTakesThemBack) {
+  constexpr uint32_t kBytes = 16;
+  const auto eeprom_of = [](sim::Machine& m) {
+    // (simavr's EEPROM ioctls answer -1 whether they worked or not.)
+    avr_eeprom_desc_t d{nullptr, 0, kBytes};
+    avr_ioctl(m.avr(), AVR_IOCTL_EEPROM_GET, &d);
+    EXPECT_NE(d.ee, nullptr);
+    return d.ee ? std::vector<uint8_t>(d.ee, d.ee + kBytes) : std::vector<uint8_t>(kBytes, 0xFF);
+  };
+  const auto boot_with = [](std::vector<uint8_t> bytes) {
+    std::unique_ptr<sim::Machine> m(new sim::Machine(simtest::image("m32")));
+    avr_eeprom_desc_t d{bytes.data(), 0, uint32_t(bytes.size())};
+    avr_ioctl(m->avr(), AVR_IOCTL_EEPROM_SET, &d);
+    m->serial().add_line("M301");
+    EXPECT_EQ(m->run_script(uint64_t(m->f_cpu()) * 2), sim::RunEnd::done);
+    return m->serial().messages().back();
+  };
+  auto first = simtest::run("m32", {"M301", "M301 P30.5 I2 D80", "M500"}, 5);
+  EXPECT_EQ(first->serial().messages().front(), "echo: p:22.20 i:1.08 d:114.00");  // Marlin's, from an erased EEPROM
+  EXPECT_EQ(first->serial().messages().back(), "echo:Settings Stored: p:30.50 i:2.00 d:80.00");
+  const std::vector<uint8_t> stored = eeprom_of(*first);
+  EXPECT_EQ(boot_with(stored), "echo: p:30.50 i:2.00 d:80.00");
+  std::vector<uint8_t> torn = stored;
+  torn[4] ^= 0x10;  // a byte of the gains
+  EXPECT_EQ(boot_with(torn), "echo: p:22.20 i:1.08 d:114.00");
+  EXPECT_EQ(boot_with(std::vector<uint8_t>(kBytes, 0xFF)), "echo: p:22.20 i:1.08 d:114.00");
 }
 
 }  // namespace
