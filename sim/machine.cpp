@@ -81,7 +81,8 @@ struct Machine::PinHook {
 
 Machine::Machine(const std::string& elf_path)
     : board_(read_board_descriptor(elf_path)),
-      starvations_(find_symbol(elf_path, "_ZN4path12_GLOBAL__N_111starvationsE")) {
+      starvations_(find_symbol(elf_path, "_ZN4path12_GLOBAL__N_111starvationsE")),
+      elf_path_(elf_path) {
   avr_global_logger_set(&Machine::on_simavr_log);
   elf_firmware_t fw;
   std::memset(&fw, 0, sizeof fw);

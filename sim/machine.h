@@ -80,6 +80,7 @@ class Machine {
   Machine& operator=(const Machine&) = delete;
 
   const am::BoardDescriptor& board() const { return board_; }
+  const std::string& elf_path() const { return elf_path_; }
   avr_t* avr() { return avr_; }
   uint64_t cycles() const;
   uint32_t f_cpu() const { return board_.f_cpu; }
@@ -153,6 +154,7 @@ class Machine {
 
   am::BoardDescriptor board_;
   ElfSymbol starvations_;  // firmware/engine/path.cpp's counter
+  std::string elf_path_;
   avr_t* avr_ = nullptr;
   std::unique_ptr<SerialHost> serial_;
   std::vector<AxisTrace> axes_;

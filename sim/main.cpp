@@ -186,7 +186,7 @@ int main(int argc, char** argv) {
       sim::write_report(out, machine, end, pty_stats, plant.get());
     }
     const std::string title = pty ? "pty" : input == "-" ? "" : input;
-    if (!plot.empty()) sim::write_run_plot(plot, machine, sim::PlotLabel{title, end});
+    if (!plot.empty()) sim::write_run_plot(plot, machine, sim::PlotLabel{title, end, plant.get()});
     if (end == sim::RunEnd::budget_spent) {
       std::cerr << "avrmotion-sim: simulated-time budget of " << max_seconds << " s spent\n";
       return 3;

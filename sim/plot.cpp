@@ -11,6 +11,7 @@
 
 #include "../core/board/descriptor.h"
 #include "motion.h"
+#include "plot_thermal.h"
 #include "plot_toolpath.h"
 #include "report.h"
 #include "svg_panel.h"
@@ -163,7 +164,9 @@ void write_run_plot(const std::string& path, Machine& m, const PlotLabel& label)
   const PathLayout layout = tp.present ? path_layout(tp) : PathLayout();
   const double width =
       std::max(2 * kPad + 3 * kCellW + kHistW, tp.present ? 2 * kPad + layout.cell_w + 24 + kPathLegendW : 0);
-  const double height = 2 * kPad + kHeader + double(rows) * kCellH + (tp.present ? path_row_height(layout) : 0);
+  const double thermal = label.plant ? kThermalRowH : 0;  // the hot end's row, below the axes'
+  const double height =
+      2 * kPad + kHeader + double(rows) * kCellH + thermal + (tp.present ? path_row_height(layout) : 0);
 
   svg << "<?xml version='1.0' encoding='UTF-8'?>\n"
       << "<svg xmlns='http://www.w3.org/2000/svg' width='" << num(width) << "' height='" << num(height)
@@ -175,8 +178,9 @@ void write_run_plot(const std::string& path, Machine& m, const PlotLabel& label)
   svg << "<title>" << esc("avrmotion-sim: " + run) << "</title>\n"
       << "<desc>One row per axis: position, velocity and acceleration against time, and a histogram of the "
          "axis's step intervals. Velocity and acceleration are the step events convolved with a Gaussian "
-         "and its derivative (docs/simulator-report.md says how). When X and Y both moved, a last row with "
-         "the XY toolpath: travel, feed and extrusion drawn apart.</desc>\n"
+         "and its derivative (docs/simulator-report.md says how). On a board with a simulated hot end, a row "
+         "with its temperatures and setpoint and the heater's duty against time. When X and Y both moved, a "
+         "last row with the XY toolpath: travel, feed and extrusion drawn apart.</desc>\n"
       << "<rect width='100%' height='100%' fill='white'/>\n";
 
   const SerialHost& serial = m.serial();
@@ -310,7 +314,9 @@ void write_run_plot(const std::string& path, Machine& m, const PlotLabel& label)
           << "' text-anchor='end' font-size='10' fill='#404040'>" << esc(note) << "</text>\n</g>\n";
     }
   }
-  if (tp.present) toolpath_row(svg, tp, layout, kPad + kHeader + double(rows) * kCellH);
+  if (label.plant)
+    draw_thermal_row(svg, *label.plant, kPad, kPad + kHeader + double(rows) * kCellH, (3 * kCellW + kHistW) / 2, t_end);
+  if (tp.present) toolpath_row(svg, tp, layout, kPad + kHeader + double(rows) * kCellH + thermal);
   if (axes.empty()) {
     svg << "<text x='" << num(kPad) << "' y='" << num(kPad + kHeader + 20) << "'>no axes on this board</text>\n";
   }

@@ -4,6 +4,9 @@
 // One row of four panels per axis, each panel with its own scale:
 //   position (mm) | velocity (mm/s) | acceleration (mm/s^2)  against time (s)
 //   | a histogram of the axis's step intervals (us, log bins, log counts).
+// On a board with a simulated hot end (PlotLabel::plant), a row below the
+// axes': its temperatures and setpoint | the heater's duty, against time
+// (sim/plot_thermal.h).
 // When the board has X and Y and both stepped, a last row: the XY toolpath
 // (mm, one scale and one 1-2-5 tick step on both axes), travel, feed and
 // extrusion drawn apart as sim/toolpath.h classifies them, with a legend and
@@ -27,6 +30,7 @@
 #include <string>
 
 #include "machine.h"
+#include "thermal_plant.h"
 
 namespace sim {
 
@@ -37,6 +41,7 @@ const char* palette_colour(int series);
 struct PlotLabel {
   std::string input;  // shown in the title (the command file's name), may be empty
   RunEnd end = RunEnd::done;
+  const ThermalPlant* plant = nullptr;  // a hot end's row (sim/plot_thermal.h)
 };
 
 void write_run_plot(const std::string& path, Machine& m, const PlotLabel& label = PlotLabel());

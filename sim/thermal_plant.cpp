@@ -33,7 +33,8 @@ const char* thermal_fault_name(ThermalFault f) {
 }
 
 ThermalPlant::ThermalPlant(Machine& m, const ThermalParams& p)
-    : m_(m), p_(p), block_(p.initial_c), sensor_(p.initial_c), peak_(p.initial_c) {
+    : m_(m), p_(p), block_(p.initial_c), sensor_(p.initial_c), peak_(p.initial_c),
+      target_(find_symbol(m.elf_path(), "_ZN6heater12_GLOBAL__N_17target_E")) {
   const am::BoardDescriptor& b = m.board();
   if (b.heater_pin == am::kNoPin || b.heater_adc > 7)
     throw std::runtime_error(std::string("board ") + b.board + " has no heater");
@@ -121,7 +122,12 @@ void ThermalPlant::step(uint64_t now) {
   sensor_ += dt * (block_ - sensor_) / p_.sensor_tau_s;
   if (sensor_ > peak_) peak_ = sensor_;
   if (++steps_in_log_ == 100) {
-    log_.push_back({double(now) / m_.f_cpu(), block_, sensor_, high_cycles_ / double(100 * step_cycles_)});
+    double target = std::nan("");
+    if (target_.found) {
+      const uint16_t at = uint16_t(target_.value & 0xFFFF);  // the data-space offset of 0x800000 + address
+      target = int16_t(m_.avr()->data[at] | m_.avr()->data[at + 1] << 8) / 100.0;
+    }
+    log_.push_back({double(now) / m_.f_cpu(), block_, sensor_, high_cycles_ / double(100 * step_cycles_), target});
     steps_in_log_ = 0;
     high_cycles_ = 0;
   }

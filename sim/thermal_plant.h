@@ -32,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "board_info.h"
 #include "machine.h"
 
 namespace sim {
@@ -63,7 +64,8 @@ const char* thermal_fault_name(ThermalFault f);
 struct ThermalSample {
   double t_s;
   double block_c, sensor_c;
-  double duty;  // the pin's high fraction over the 100 ms before t_s
+  double duty;      // the pin's high fraction over the 100 ms before t_s
+  double target_c;  // the firmware's setpoint then (its heater::target_), NaN if the image has none
 };
 
 class ThermalPlant {
@@ -108,6 +110,7 @@ class ThermalPlant {
   double fan_ = 0;
   ThermalFault fault_ = ThermalFault::none;
   double high_cycles_ = 0;  // pin high time in the log interval
+  ElfSymbol target_;        // firmware/services/heater.cpp's setpoint (0.01 C)
   unsigned steps_in_log_ = 0;
   std::vector<ThermalSample> log_;
   struct Event {

@@ -22,6 +22,7 @@
 #include "plot.h"
 #include "sim_fixture.h"
 #include "ticks.h"
+#include "thermal_plant.h"
 #include "toolpath.h"
 #include "xml_check.h"
 
@@ -1031,3 +1032,68 @@ TEST(Pictures, NoToolpathUnlessXAndYBothMoved) {
 }
 
 }  // namespace
+
+namespace {
+
+// A panel's data values at the pixels of its polyline `kind`, mapped through
+// the panel's y tick labels (each label sits 4 px below its tick's line:
+// sim/svg_panel.cpp).
+std::vector<double> series_values(const Picture& pic, const char* panel_kind, const char* kind) {
+  const xmlcheck::Element* panel = nullptr;
+  for (const auto* p : pic.panels)
+    if (p->attr_or("data-axis") == "T" && p->attr_or("data-kind") == panel_kind) panel = p;
+  const xmlcheck::Element* series = nullptr;
+  for (const auto* e : pic.series)
+    if (e->attr_or("data-axis") == "T" && e->attr_or("data-kind") == kind) series = e;
+  EXPECT_TRUE(panel && series) << panel_kind << " " << kind;
+  if (!panel || !series) return {};
+  const auto ticks = texts(*panel, "tick", "y");
+  EXPECT_GE(ticks.size(), 2u);
+  if (ticks.size() < 2) return {};
+  const double v0 = std::strtod(ticks.front()->text.c_str(), nullptr), v1 = std::strtod(ticks.back()->text.c_str(), nullptr);
+  const double p0 = std::strtod(ticks.front()->attr_or("y").c_str(), nullptr) - 4;
+  const double p1 = std::strtod(ticks.back()->attr_or("y").c_str(), nullptr) - 4;
+  std::vector<double> out;
+  std::istringstream pts(series->attr_or("points"));
+  for (std::string xy; pts >> xy;) {
+    const double py = std::strtod(xy.substr(xy.find(',') + 1).c_str(), nullptr);
+    out.push_back(v0 + (py - p0) * (v1 - v0) / (p1 - p0));
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST(Pictures, AHotEndRowShowsItsTemperaturesSetpointAndDuty) {
+  // The m32 heats toward 200 C for 20 s: the picture gains a row of two
+  // panels; the setpoint line sits at 0 until M104 (after 1 s), then at 200; the
+  // thermistor climbs; the duty is full on while it is far below.
+  sim::Machine m(simtest::image("m32"));
+  sim::ThermalPlant plant(m);
+  for (const char* l : {"G4 P1", "WAIT", "M104 S200", "G4 P20"}) m.serial().add_line(l);
+  ASSERT_EQ(m.run_script(uint64_t(30) * m.f_cpu()), sim::RunEnd::done);
+  const std::string path = temp_path("hot-end.svg");
+  sim::write_run_plot(path, m, sim::PlotLabel{"hot end", sim::RunEnd::done, &plant});
+  Picture pic;
+  const std::string doc = slurp(path);
+  std::remove(path.c_str());
+  xmlcheck::Parser parser(doc);
+  pic.root = parser.parse();
+  ASSERT_TRUE(pic.root) << parser.error();
+  pic.root->find_all([](const xmlcheck::Element& e) { return e.attr_or("class") == "panel"; }, pic.panels);
+  pic.root->find_all([](const xmlcheck::Element& e) { return e.attr_or("class") == "series"; }, pic.series);
+  EXPECT_EQ(pic.panels.size(), 4 * m.axes().size() + 2);
+  const std::vector<double> setpoint = series_values(pic, "temperature", "setpoint");
+  const std::vector<double> sensor = series_values(pic, "temperature", "sensor");
+  const std::vector<double> duty = series_values(pic, "duty", "duty");
+  ASSERT_GT(setpoint.size(), 100u);
+  EXPECT_NEAR(setpoint.front(), 0, 1);
+  EXPECT_NEAR(setpoint.back(), 200, 1);
+  ASSERT_EQ(sensor.size(), plant.log().size());
+  EXPECT_NEAR(sensor.front(), 25, 1);
+  EXPECT_NEAR(sensor.back(), plant.sensor_c(), 1);
+  EXPECT_GT(sensor.back(), 50);
+  ASSERT_EQ(duty.size(), plant.log().size());
+  EXPECT_NEAR(*std::max_element(duty.begin(), duty.end()), 1, 0.02);
+  EXPECT_NEAR(duty.front(), 0, 0.02);
+}
