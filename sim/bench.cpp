@@ -56,6 +56,7 @@ struct Result {
   char error[480] = {};
   Figures figures;
   SizeRow size;
+  HeaterFigures heater;
 };
 static_assert(std::is_trivially_copyable<Result>::value, "a Result crosses a pipe as bytes");
 static_assert(sizeof(Result) <= PIPE_BUF, "a Result fits the pipe in one write");
@@ -204,7 +205,9 @@ class Progress {
   }
   void ended(size_t i, const Job& job, const Result& r, double seconds) {
     ++ended_;
-    const bool inexact = r.done && job.name.rfind("size ", 0) != 0 && !r.figures.ok;
+    const bool heater = job.name.rfind("heater ", 0) == 0;
+    const bool inexact =
+        r.done && job.name.rfind("size ", 0) != 0 && (heater ? !r.heater.ok : !r.figures.ok);
     std::fprintf(stderr, "avrmotion-bench: [%zu/%zu] %s %s in %.1f s (%zu of %zu ended, %.1f s since the start)%s%s\n",
                  i + 1, total_, r.done ? "done" : "BROKEN", job.name.c_str(), seconds, ended_, total_,
                  seconds_since(start_), r.done ? "" : ": ", r.done ? (inexact ? ": NOT EXACT" : "") : r.error);
@@ -336,6 +339,8 @@ int main(int argc, char** argv) {
                       [&dir, s](Result& r) { r.figures = measure(dir, s); }});
     }
   }
+  // The hot end's run is the longest: first.
+  jobs.insert(jobs.begin(), Job{"heater m32 M104 S200", [&dir](Result& r) { r.heater = measure_heater(dir); }});
   const size_t first_size_job = jobs.size();
   for (const char* name : kSizeImages) {
     jobs.push_back({std::string("size ") + name, [&dir, name](Result& r) { r.size = measure_size(dir, name); }});
@@ -354,32 +359,34 @@ int main(int argc, char** argv) {
     if (!results[i].done) {
       unfinished = true;
       std::fprintf(stderr, "avrmotion-bench: %s: %s\n", jobs[i].name.c_str(), results[i].error);
-    } else if (i < first_size_job && !results[i].figures.ok) {
+    } else if (i == 0 ? !results[i].heater.ok : i < first_size_job && !results[i].figures.ok) {
       inexact = true;
     }
   }
+  const HeaterFigures heater = results.front().heater;
 
   std::vector<SizeRow> sizes;
   for (size_t i = first_size_job; i < results.size(); ++i) sizes.push_back(results[i].size);
   std::vector<std::vector<Figures>> engine;
-  size_t k = 0;
+  size_t k = 1;  // after the heater's job
   for (const Table& t : tables) {
     engine.emplace_back();
     for (size_t i = 0; i < t.list.size(); ++i) engine.back().push_back(results[k++].figures);
   }
   print_sizes(sizes);
   for (size_t t = 0; t < tables.size(); ++t) print_engine(tables[t], engine[t].data());
+  print_heater(heater);
   std::fflush(stdout);
 
   if (unfinished || inexact) {
     std::fprintf(stderr, "avrmotion-bench: %s\n",
                  unfinished ? "a run did not finish: the figures are not valid"
-                            : "a run did not end with every step exact");
+                            : "a run did not end with every step exact (or the hot end did not settle)");
     if (!markdown_path.empty()) std::fprintf(stderr, "avrmotion-bench: %s not written\n", markdown_path.c_str());
     return unfinished ? 2 : 1;
   }
   if (!markdown_path.empty()) {
-    const std::string page = markdown(sizes, engine);
+    const std::string page = markdown(sizes, engine, heater);
     FILE* out = std::fopen(markdown_path.c_str(), "w");
     const bool written = out && std::fwrite(page.data(), 1, page.size(), out) == page.size();
     if (!out || std::fclose(out) != 0 || !written) {

@@ -37,6 +37,21 @@ struct Figures {
   uint32_t f_cpu = 0;
 };
 
+// The m32's hot end (sim/bench_heater.cpp): M104 S200 from 25 C with
+// Marlin's default gains on the simulated 40 W plant, kHeaterSeconds long.
+struct HeaterFigures {
+  bool ok = false;             // the run finished, no fault, the target reached
+  double to_target_s = 0;      // first reading at or above 200 C
+  double overshoot_c = 0;      // the highest reading above 200 C
+  double settled_s = 0;        // from then on within +-0.3 C
+  double hold_lo_c = 0, hold_hi_c = 0;  // the readings from settled_s to the end
+  size_t samples = 0;          // PID samples timed (the last 10 s)
+  double sample_cycles = 0;    // heater::poll() calls that ran a sample: mean cycles
+  uint64_t sample_cycles_max = 0;
+};
+constexpr double kHeaterSeconds = 200;
+HeaterFigures measure_heater(const std::string& firmware_dir);
+
 // One image's row of the size table.
 struct SizeRow {
   bool found = false;  // the image exists (a missing one has no row)
@@ -69,8 +84,10 @@ const PartSize* part_of(const char* mcu);
 
 void print_sizes(const std::vector<SizeRow>& rows);
 void print_engine(const Table& t, const Figures* figures);
+void print_heater(const HeaterFigures& h);
 // The Markdown page: the same figures as the tables on standard output,
 // formatted alike, and nothing that changes from run to run.
-std::string markdown(const std::vector<SizeRow>& sizes, const std::vector<std::vector<Figures>>& engine);
+std::string markdown(const std::vector<SizeRow>& sizes, const std::vector<std::vector<Figures>>& engine,
+                     const HeaterFigures& heater);
 
 }  // namespace bench

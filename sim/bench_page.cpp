@@ -62,10 +62,20 @@ void print_engine(const Table& t, const Figures* figures) {
   std::printf("\n");
 }
 
+void print_heater(const HeaterFigures& h) {
+  std::printf("Hot end, m32: M104 S200 from 25 C, Marlin's default gains, the simulated 40 W plant, %.0f s\n",
+              kHeaterSeconds);
+  std::printf("  to 200 C   overshoot   settled (+-0.3 C)   hold from then    PID sample, cycles\n");
+  std::printf("  %6.1f s   %6.2f C    %7.1f s           %.2f..%.2f C   mean %.0f, max %llu, of %zu\n\n",
+              h.to_target_s, h.overshoot_c, h.settled_s, h.hold_lo_c, h.hold_hi_c, h.sample_cycles,
+              (unsigned long long)h.sample_cycles_max, h.samples);
+}
+
 // The Markdown page (docs/benchmarks.md): the same figures as the tables on
 // standard output, formatted alike, and nothing that changes from run to run
 // (no date, no wall time), so the page only changes when a figure does.
-std::string markdown(const std::vector<SizeRow>& sizes, const std::vector<std::vector<Figures>>& engine) {
+std::string markdown(const std::vector<SizeRow>& sizes, const std::vector<std::vector<Figures>>& engine,
+                     const HeaterFigures& heater) {
   std::string o;
   auto add = [&](const std::string& s) { o += s; };
   add("# Benchmarks\n\n"
@@ -117,6 +127,23 @@ std::string markdown(const std::vector<SizeRow>& sizes, const std::vector<std::v
     }
     add("\n");
   }
+
+  add(format("## Hot end (m32)\n\n"
+             "`M104 S200` from 25 C with Marlin's default gains, on the simulated 40 W hot end\n"
+             "(`sim/thermal_plant.h`, [heater.md](heater.md)), %.0f s. The temperatures are the\n"
+             "thermistor's as the plant logs them every 100 ms; *settled* is the time from which\n"
+             "every reading stays within +-0.3 C of 200 C, *hold* their range from then to the end.\n"
+             "*PID sample*: the `heater::poll()` calls of the last 10 s that ran a 125 ms sample\n"
+             "(conversion, PID, safety, PWM; those over 1000 cycles), from their first instruction\n"
+             "to their return, interrupts included.\n\n",
+             kHeaterSeconds));
+  add("| to 200 C (s) | overshoot (C) | settled (s) | hold (C) | PID sample, mean (cycles) | max | samples |\n"
+      "|---:|---:|---:|---:|---:|---:|---:|\n");
+  char row[160];
+  std::snprintf(row, sizeof row, "| %.1f | %.2f | %.1f | %.2f..%.2f | %.0f | %llu | %zu |\n\n", heater.to_target_s,
+                heater.overshoot_c, heater.settled_s, heater.hold_lo_c, heater.hold_hi_c, heater.sample_cycles,
+                (unsigned long long)heater.sample_cycles_max, heater.samples);
+  add(row);
 
   add("## Image sizes\n\n"
       "Flash is `.text + .data`, RAM is `.data + .bss` (static data), both read from the\n"

@@ -166,9 +166,27 @@ TEST(Bench, ParallelPageHasEveryFigureAndTheDocsPageIsCurrent) {
   }
   EXPECT_NE(page.find("not re-measured"), std::string::npos);
 
-  // Progress: every job (a scenario or a size row) starts and ends on
-  // standard error.
-  const size_t jobs = engine.size() + sizes.size();
+  // The hot end's row: the figures the terminal prints, on the page.
+  std::vector<std::string> hot_out, hot_page;
+  const std::vector<std::string> out_lines = lines_of(r.out);
+  for (size_t i = 0; i + 2 < out_lines.size(); ++i) {
+    if (out_lines[i].rfind("Hot end, m32:", 0) != 0) continue;
+    for (const std::string& w : words(without(out_lines[i + 2], ","))) {
+      if (std::isdigit(static_cast<unsigned char>(w[0]))) hot_out.push_back(w);
+    }
+  }
+  for (const std::string& line : lines_of(page)) {
+    if (line.rfind("| ", 0) == 0 && line.find("..") != std::string::npos && hot_page.empty()) {
+      const std::vector<std::string> c = cells(line);
+      if (c.size() == 7) hot_page = c;
+    }
+  }
+  ASSERT_EQ(hot_out.size(), 7u) << r.out;  // to 200 C, overshoot, settled, hold, mean, max, samples
+  EXPECT_EQ(hot_page, hot_out) << page;
+
+  // Progress: every job (the hot end, a scenario or a size row) starts and
+  // ends on standard error.
+  const size_t jobs = 1 + engine.size() + sizes.size();
   size_t started = 0, ended = 0;
   for (const std::string& line : lines_of(r.err)) {
     started += line.find("] start ") != std::string::npos;
