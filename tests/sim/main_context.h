@@ -9,6 +9,7 @@
 
 #include "machine.h"
 #include <sim_avr.h>
+#include <sim_core.h>
 
 namespace simtest {
 
@@ -42,13 +43,17 @@ struct MainCall {
 // section. The main loop's registers and SREG are put back afterwards: the
 // call clobbers what the ABI lets it, which the interrupted code did not
 // expect, and nothing else can have changed them (handlers restore theirs).
+// I goes off and on again through simavr's avr_sreg_set(), as CLI and SEI
+// would: a raw write of SREG's I bit leaves simavr's interrupt state as it
+// was, and an interrupt raised while I was off then waits for the next
+// event that recomputes it (a thousand cycles and more, measured).
 inline MainCall call_in_main(sim::Machine& m, uint32_t byte_address, bool interrupts_off = false) {
   avr_t* avr = m.avr();
   EXPECT_TRUE(main_with_interrupts_on(avr)) << "not between two main-loop instructions";
   uint8_t regs[32], sreg[8];
   std::memcpy(regs, avr->data, sizeof regs);
   std::memcpy(sreg, avr->sreg, sizeof sreg);
-  if (interrupts_off) avr->sreg[S_I] = 0;
+  if (interrupts_off) avr_sreg_set(avr, S_I, 0);
   const avr_flashaddr_t pc = avr->pc;
   const uint16_t sp = uint16_t(avr->data[R_SPL] | avr->data[R_SPH] << 8);
   // Push the return address as CALL does: the word address, low byte first,
@@ -72,7 +77,10 @@ inline MainCall call_in_main(sim::Machine& m, uint32_t byte_address, bool interr
   c.result = uint32_t(avr->data[22]) | uint32_t(avr->data[23]) << 8 | uint32_t(avr->data[24]) << 16 |
              uint32_t(avr->data[25]) << 24;
   std::memcpy(avr->data, regs, sizeof regs);
+  const uint8_t i_now = avr->sreg[S_I];
   std::memcpy(avr->sreg, sreg, sizeof sreg);
+  avr->sreg[S_I] = i_now;
+  avr_sreg_set(avr, S_I, sreg[S_I]);  // as SEI: one more instruction, then what is pending
   return c;
 }
 
