@@ -288,6 +288,8 @@ void Machine::attach_isr_profiler() {
   }
 }
 
+unsigned Machine::free_ram() const { return unsigned(avr_->ramend - paint_start_ + 1); }
+
 unsigned Machine::stack_bytes() const {
   for (uint32_t a = paint_start_; a <= avr_->ramend; ++a) {
     if (avr_->data[a] != kPaint) return unsigned(avr_->ramend - a + 1);

@@ -108,6 +108,9 @@ class Machine {
 
   const std::map<int, IsrStats>& isr_stats() const { return isr_; }
   unsigned stack_bytes() const;
+  // The painted RAM: from the end of .bss to RAMEND. A stack_bytes() this
+  // large means the stack reached the static data.
+  unsigned free_ram() const;
   // The firmware's count of path starvations (firmware/engine/path.h): the
   // engine ran dry under a block that had more to queue or ended at speed.
   // -1 for an image without a path.

@@ -13,6 +13,9 @@ using Claims = hal::ClaimSet<kStepClock, kClock, hal::claim::uart, Axes::Claims:
 
 constexpr bool kGcode = true;  // the cnc program speaks G-code (docs/gcode.md)
 constexpr bool kArcs = true;   // G2/G3 as chords (docs/interpolation.md): about 7.5 KB of flash
-constexpr uint8_t kPathBlocks = 5;  // look-ahead ring of G-code blocks (firmware/engine/path.h); RAM: 62 B a block, beside a stack of about 450 B (an R arc)
+// The look-ahead ring (firmware/engine/path.h), 62 B a block: four blocks
+// are too short to keep a 10 mm circle at 20 mm/s, and five leave an R
+// arc's stack (470 B, tests/sim/test_arcs.cpp) 7 bytes short of the data.
+constexpr uint8_t kPathBlocks = 5;
 
 }  // namespace board

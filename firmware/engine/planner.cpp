@@ -92,18 +92,18 @@ uint8_t clamp(const Move& move, Ramp& ramp) {
 void count(const Move& move, bool at_rest) {
   for (uint8_t i = 0; i < board::Axes::count; ++i) {
     positions[i] += board::Axes::units_for(i, move.steps[i], at_rest);
-    counted[i] += uint32_t(move.steps[i]);
+    if (board::kOdometer) counted[i] += uint32_t(move.steps[i]);
   }
 }
 
 int32_t position(uint8_t axis) { return positions[axis]; }
 
 void positions_now(int32_t (&units)[board::Axes::count]) {
-  uint32_t made[board::Axes::count];
   if (!board::kOdometer) {
     for (uint8_t i = 0; i < board::Axes::count; ++i) units[i] = positions[i];
     return;
   }
+  uint32_t made[board::Axes::count];
   odometer::now(made);
   for (uint8_t i = 0; i < board::Axes::count; ++i)
     units[i] = positions[i] - board::Axes::units_for(i, int32_t(counted[i] - made[i]), false);
