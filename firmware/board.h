@@ -8,12 +8,21 @@
 // `board::kHeater` finds the board's name first and looks into the namespaces
 // `board` uses only when the board has none (qualified lookup).
 namespace board_defaults {
+constexpr bool kGcode = false;  // the line protocol takes G-code (docs/gcode.md)
 constexpr bool kHeater = false;  // no heater service, heater M-codes refused
 struct Heater;  // a heater's wiring (firmware/boards/m32.h), only with kHeater
 // The odometer (firmware/engine/odometer.h, about 1 KB of flash): M114
 // counts where the motors are while they move. Without it, where the
 // queued motion ends (Marlin's logical position).
 constexpr bool kOdometer = true;
+// grbl's realtime bytes (firmware/apps/cnc/realtime.h): `?` status, `!`
+// feed hold, `~` resume, Ctrl-X soft reset, taken in the receive interrupt
+// and never put into a line.
+constexpr bool kRealtime = false;
+// The direct commands beside G-code (MOVE, POS, WAIT, RELEASE, MODE:
+// docs/protocol.md, about 2 KB of flash); a board without them answers
+// every other line as unknown G-code.
+constexpr bool kCommands = true;
 }  // namespace board_defaults
 namespace board {
 using namespace board_defaults;

@@ -28,6 +28,10 @@ struct Describe<AxisSet<Axes...>> {
   static constexpr am::BoardDescriptor make() {
     return am::BoardDescriptor{{'A', 'M', 'B', '1'}, AVRMOTION_BOARD_NAME, AVRMOTION_MCU_NAME,
                                F_CPU, board::kBaud, uint8_t(sizeof...(Axes)), Heater::pwm, Heater::adc, Heater::ok,
+                               uint8_t((board::kGcode ? am::kProgramGcode : 0) |
+                                       (board::kCommands ? am::kProgramCommands : 0) |
+                                       (board::kRealtime ? am::kProgramRealtime : 0)),
+                               {0, 0, 0},
                                {Axes::descriptor()...}};
   }
 };

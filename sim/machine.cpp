@@ -107,6 +107,7 @@ Machine::Machine(const std::string& elf_path)
   for (uint32_t a = ram_start; a <= avr_->ramend; ++a) avr_->data[a] = kPaint;
 
   serial_.reset(new SerialHost(avr_, board_.baud));
+  if (!(board_.program & am::kProgramCommands)) serial_->set_wait_line("M400");
   attach_axes();
   attach_isr_profiler();
   // A board with a heater has its thermistor plugged in, at room temperature

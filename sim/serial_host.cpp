@@ -145,7 +145,7 @@ void SerialHost::send_next() {
   if (script_.empty()) {
     if (wait_sent_) return;
     wait_sent_ = true;
-    outgoing_ = "WAIT\n";
+    outgoing_ = wait_line_ + "\n";
   } else {
     const std::string line = script_.front();
     script_.pop_front();

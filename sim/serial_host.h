@@ -5,8 +5,9 @@
 // time of the baud rate, and records everything the firmware prints.
 //
 // The first line the firmware prints is its banner; nothing is sent before
-// it. After the last script line the host sends WAIT (not counted as a script
-// line), so finished() becomes true only once all motion has ended. A line
+// it. After the last script line the host sends WAIT (M400 on an image
+// without the direct commands; not counted as a script line), so finished()
+// becomes true only once all motion has ended. A line
 // added once finished() is true is sent at once, and a new WAIT after it.
 //
 // Relay mode (avrmotion-sim --pty, pty_run.h): the lines come from a client
@@ -37,6 +38,9 @@ class SerialHost {
   SerialHost(avr_t* avr, uint32_t baud);
 
   void add_line(const std::string& line);
+  // What is sent after the script to wait for the motion's end: WAIT, or
+  // M400 on an image without the direct commands (Machine sets it).
+  void set_wait_line(const std::string& line) { wait_line_ = line; }
   // Sends bytes at the line's byte rate without waiting for any answer, as a
   // sender that ignores the flow control would (for flood tests).
   void send_raw(const std::string& bytes);
@@ -50,6 +54,9 @@ class SerialHost {
   // Shortest time between two send_raw()/relay() bytes handed to the UART
   // (cycles; 0 until two were): never below the byte time.
   uint64_t min_byte_interval() const { return min_byte_interval_; }
+  // The cycle the last send_raw()/relay() byte was handed to the UART (0
+  // before one was).
+  uint64_t last_byte_cycle() const { return last_byte_cycle_; }
   // The MCU was reset (Machine::reset()): bytes not handed over yet are
   // dropped, and so are the firmware's half-printed line and the client's
   // half-sent one; lines still waiting for an answer never get one. Returns
@@ -88,6 +95,7 @@ class SerialHost {
   size_t raw_pos_ = 0;
   bool awaiting_answer_ = false;
   bool wait_sent_ = false;
+  std::string wait_line_ = "WAIT";
   bool finished_ = false;
   size_t lines_sent_ = 0;
   bool relay_ = false;

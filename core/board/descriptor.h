@@ -36,6 +36,10 @@ struct AxisDescriptor {
 
 constexpr uint8_t kMaxAxes = 6;
 
+// BoardDescriptor::program: G-code lines; the direct commands (MOVE, WAIT,
+// ...); grbl's realtime bytes.
+constexpr uint8_t kProgramGcode = 1, kProgramCommands = 2, kProgramRealtime = 4;
+
 struct BoardDescriptor {
   char magic[4];          // "AMB1"
   char board[12];         // NUL-terminated
@@ -48,10 +52,12 @@ struct BoardDescriptor {
   uint8_t heater_pin;
   uint8_t heater_adc;
   uint8_t temp_ok_pin;
+  uint8_t program;  // kProgram* bits: what the image's line protocol takes
+  uint8_t reserved[3];
   AxisDescriptor axes[kMaxAxes];
 };
 
 static_assert(sizeof(AxisDescriptor) == 12, "descriptor layout must match on host and AVR");
-static_assert(sizeof(BoardDescriptor) == 112, "descriptor layout must match on host and AVR");
+static_assert(sizeof(BoardDescriptor) == 116, "descriptor layout must match on host and AVR");
 
 }  // namespace am

@@ -67,6 +67,10 @@
 //             units in the last place; never above the entry), and the next
 //             cruise rises with it if it must (by a unit in the last place).
 //     done()  the oldest taken block has run: dropped.
+//     slow_next_entry(factor)  the block taken last will end factor times
+//             its planned exit (a feed hold restarted it from rest): the next
+//             block's entry is lowered to match, final, and the blocks after
+//             it are replanned.
 //   count() includes taken blocks; clear() forgets everything.
 //   newest_nominal() is the newest block's nominal speed, mm/s (its feed as
 //   the limits hold it). set_steps_per_mm(i, v): axis i's steps per mm changed (a coil axis's
@@ -202,6 +206,20 @@ class PathPlanner {
 
   void clear() { tail_ = count_ = taken_ = planned_ = 0; }
 
+  // The block taken last ends slower than planned, by `factor` (0 .. 1: a
+  // feed hold stopped it and it restarted from rest): the oldest block not
+  // taken yet enters that much slower, final, and the rest is replanned.
+  void slow_next_entry(float factor) {
+    if (taken_ == count_ || !(key(factor) < key(1.0f))) return;
+    const uint8_t at = index(taken_);
+    Slot& s = slots_[at];
+    s.out.entry *= factor;
+    s.entry *= factor * factor;
+    s.max_entry = s.entry;
+    planned_ = at;
+    replan();
+  }
+
  private:
   struct Slot {
     PathBlock<N> out;
@@ -274,7 +292,7 @@ class PathPlanner {
   }
 
   // Reverse pass down to the last final entry, then forward from it.
-  void replan() {
+  [[gnu::noinline]] void replan() {
     const uint8_t newest = index(count_ - 1);
     float next = 0;
     for (uint8_t i = newest; i != planned_; i = back(i)) {

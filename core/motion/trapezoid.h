@@ -58,8 +58,12 @@
 //   bounds. Two parts are enough while r (k - r) / k <= 3/16 interval; the
 //   parts per run grow with k / interval.
 //
-//   The cruise is one run of up to 65535 events at exactly c ticks: the
-//   ideal cruise speed tick_hz / c makes it exact.
+//   The cruise is runs of exactly c ticks, each of fewer than 2^17 ticks
+//   (65535 >> floor(log2 c) events, at least one), or 2^(17 - h) after
+//   shorten_cruise(h): the ideal cruise speed tick_hz / c makes it exact,
+//   and a feed hold, which can only change what is not queued yet, waits
+//   less than that (8.2 ms at 16 MHz, 2 ms with h = 2) per queued cruise
+//   segment.
 //
 //   No time is ever absolute (a block can last hours at a low speed): a
 //   ramp run lasts 2 k / (w1 + w2) between the speeds at its ends, with
@@ -145,6 +149,9 @@ class BasicTrapezoidRuns {
 
     n_ = b.events;
     c_ = c;
+    cruise_run_ = uint16_t(0xFFFF >> shorter_);  // 2^16 / 2^floor(log2 c) events: 2^16 .. 2^17 ticks
+    for (uint32_t t = c; t >>= 1;) cruise_run_ >>= 1;
+    if (!cruise_run_) cruise_run_ = 1;
     done_ = 0;
     left_[0] = left_[1] = 0;
     late_ = 0;
@@ -189,7 +196,7 @@ class BasicTrapezoidRuns {
       if (left == 0) return StepRun{0, 0};
       if (done_ >= edge_[0] && left > edge_[1]) {  // cruise: exact, late_ stays as it is
         uint32_t k = left - edge_[1];
-        if (k > 0xFFFF) k = 0xFFFF;
+        if (k > cruise_run_) k = cruise_run_;
         done_ += k;
         return StepRun{c_, uint16_t(k)};
       }
@@ -215,6 +222,13 @@ class BasicTrapezoidRuns {
 
   Real exit_speed() const { return exit_; }
   uint32_t events_done() const { return done_; }
+  uint32_t events_left() const { return n_ - done_; }
+  // Cruise runs of blocks started from now on last under 2^(17 - halvings)
+  // ticks (0..8): shorter runs, and a feed hold waits less for the queue.
+  void shorten_cruise(uint8_t halvings) { shorter_ = halvings; }
+  // Every part of the planned run handed out: a new start() may take over
+  // from event events_done() (a feed hold does, firmware/engine/path.cpp).
+  bool between_runs() const { return !(left_[0] | left_[1]); }
 
  private:
   friend struct TrapezoidProbe;
@@ -379,6 +393,8 @@ class BasicTrapezoidRuns {
   uint8_t kind_ = 0;           // the kind of the next part
   // The block.
   uint32_t n_ = 0, done_ = 0, c_ = 0;
+  uint16_t cruise_run_ = 0;    // events of a cruise run: below 2^(17 - shorter_) ticks
+  uint8_t shorter_ = 0;        // halvings of the cruise runs (a feed hold waits for the queue)
   uint32_t edge_[2] = {0, 0};  // the events in which the ramps end, from the start and from the end
   Real w_ = 0;                 // speed at event done_ (after the last run planned)
   Real late_ = 0;              // ticks the last planned run's end is behind its ideal time

@@ -45,6 +45,7 @@
 //     set_position     G92: nothing moves; the changed offsets are in the state
 //     report_position  M114: print state().axis[i].coord (and .steps)
 //     enable, release  M17; M18 or M84 (every axis)
+//     wait             M400: the answer waits until every move has ended
 //     set_mode         M350: mode[i] for every axis in `axes`
 //     program_end      M2/M30 (modes back to power-up, see below)
 //     heater           M104 M105 M108 M109 M155 M301 M303: `heater` says
@@ -138,7 +139,7 @@ struct GcodeState {
 };
 
 enum class GcodeActionKind : uint8_t {
-  none, move, arc, dwell, set_position, report_position, enable, release, set_mode, program_end, heater,
+  none, move, arc, dwell, set_position, report_position, enable, release, wait, set_mode, program_end, heater,
 };
 
 // The highest target a heater code takes: Marlin's HEATER_0_MAXTEMP (275 C,
@@ -361,6 +362,7 @@ GcodeError GcodeInterpreter<N, Arcs, Heater>::execute(const GcodeBlock& b, Gcode
   } else if (machine != GcodeCode::none) {
     kind = machine == GcodeCode::m17    ? GcodeActionKind::enable
            : machine == GcodeCode::m114 ? GcodeActionKind::report_position
+           : machine == GcodeCode::m400 ? GcodeActionKind::wait
                                         : GcodeActionKind::release;
   } else if (stop != GcodeCode::none) {
     m.motion = Motion::rapid;

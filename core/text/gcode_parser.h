@@ -121,7 +121,7 @@ enum class GcodeCode : uint8_t {
   g4, g92,              // non-modal
   m2, m30,              // stop
   m82, m83,             // extruder
-  m17, m18, m84, m114, m350,  // machine
+  m17, m18, m84, m114, m350, m400,  // machine
   m104, m105, m108, m109, m155, m301, m303, m500,  // machine: the heater's (M500: its gains)
 };
 
@@ -202,6 +202,7 @@ inline GcodeCode code_of(char letter, int32_t number) {
   if (n == 84) return GcodeCode::m84;
   if (n == 114) return GcodeCode::m114;
   if (n == 350) return GcodeCode::m350;
+  if (n == 400) return GcodeCode::m400;
   if (n == 104 || n == 105) return GcodeCode(uint8_t(GcodeCode::m104) + (n - 104));
   if (n == 108 || n == 109) return GcodeCode(uint8_t(GcodeCode::m108) + (n - 108));
   if (n == 155) return GcodeCode::m155;

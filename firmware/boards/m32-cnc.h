@@ -11,6 +11,8 @@ using namespace m32_wiring;
 
 using Claims = hal::ClaimSet<kStepClock, kClock, hal::claim::uart, Axes::Claims::all>;
 
+constexpr bool kRealtime = true;
+constexpr bool kCommands = false;  // a grbl-style mill: G-code only (their flash goes to the realtime commands)  // grbl's ? ! ~ Ctrl-X (firmware/apps/cnc/realtime.h)
 constexpr bool kGcode = true;  // the cnc program speaks G-code (docs/gcode.md)
 constexpr bool kArcs = true;   // G2/G3 as chords (docs/interpolation.md): about 7.5 KB of flash
 // The look-ahead ring (firmware/engine/path.h), 62 B a block: four blocks

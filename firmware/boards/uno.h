@@ -61,6 +61,8 @@ using Claims = hal::ClaimSet<kStepClock, kClock, hal::claim::uart, Axes::Claims:
 constexpr uint32_t kBaud = 115200;
 constexpr uint32_t kStepTimerHz = F_CPU;
 constexpr uint32_t kMaxStepRate = 20000;
+// No kRealtime: grbl's realtime bytes and feed hold (docs/realtime.md) need
+// about 2.4 KB more flash than this image has left.
 constexpr bool kGcode = true;  // the cnc program speaks G-code (docs/gcode.md)
 constexpr bool kArcs = false;  // G2/G3 need about 4 KB of flash; this image has 1.1 KB left
 constexpr uint8_t kPathBlocks = 5;  // look-ahead ring of G-code blocks (firmware/engine/path.h); RAM: the stack needs 360 B

@@ -1,5 +1,6 @@
 #include "path.h"
 
+#include "../../core/motion/feed_hold.h"
 #include "../../core/motion/path_planner.h"
 #include "../../core/motion/trapezoid.h"
 #include "clock.h"
@@ -19,6 +20,9 @@ using Plan = am::PathPlanner<kAxes, board::kPathBlocks>;
 // to plan the next.
 constexpr uint8_t kLowWater = 4;
 constexpr float kJunctionDeviationMm = 0.01f;
+// With a feed hold, cruise runs of under 2^15 ticks (2 ms at 16 MHz): the
+// stop starts after what the engine has queued, at most kQueueSize of them.
+constexpr uint8_t kHoldCruiseHalvings = 2;
 
 constexpr uint32_t highest_rate(uint8_t i = 0, uint32_t most = board::kMaxStepRate) {
   return i == kAxes ? most
@@ -63,8 +67,17 @@ bool engine_was_busy;  // at the end of the last pump()
 bool exit_moving;      // the last block ends at speed: the next must follow at once
 uint16_t starvations;  // see path.h; read by the simulator (sim/report.cpp)
 
+// Feed hold (path.h): the generating block's stop (core/motion/feed_hold.h);
+// the interval of the last run queued; how much slower than planned a stop
+// that runs on into the next block has left it (0: nothing carries over).
+Hold holding;
+bool resume_asked;
+am::FeedHold stop;
+uint32_t last_interval;
+float carried;
+
 // Every block handed to the engine.
-bool idle() { return !generating && !direct_waiting && dwell_ms == 0 && ring_empty(); }
+bool idle() { return !generating && !(board::kRealtime && stop.held()) && !direct_waiting && dwell_ms == 0 && ring_empty(); }
 
 void set_steps_per_mm() {
   for (uint8_t i = 0; i < kAxes; ++i) {
@@ -89,6 +102,10 @@ void begin(const am::TrapezoidBlock& b, const planner::Steps& steps) {
     dda = engine::begin_block(serial);
     dda->start(steps);
   }
+  if (board::kRealtime) {
+    runs.shorten_cruise(kHoldCruiseHalvings);
+    stop.begin(b);
+  }
   runs.start(b, board::kStepTimerHz);
   axis_mask = mask;
   dir_mask = planner::dirs_of(steps);
@@ -102,14 +119,16 @@ void begin(const am::TrapezoidBlock& b, const planner::Steps& steps) {
 // taken that could not start).
 bool take() {
   if (!engine::block_available()) return false;
-  if (direct_waiting) {
+  if (board::kCommands && direct_waiting) {
     begin(direct, direct_move.steps);
     direct_waiting = false;
     return true;
   }
   if (ring_empty() || !take_now()) return false;
   const Block* b = plan().take();
-  begin(am::TrapezoidBlock{b->events, b->entry, b->cruise, b->exit, b->accel}, b->steps);
+  // A stop that runs on from the block before enters as much slower.
+  const float entry = board::kRealtime && holding == Hold::stopping ? b->entry * carried : b->entry;
+  begin(am::TrapezoidBlock{b->events, entry, b->cruise, b->exit, b->accel}, b->steps);
   plan().done();
   return true;
 }
@@ -120,6 +139,17 @@ void queue_dwell() {
   const uint16_t ms = dwell_ms > 0xFFFF ? 0xFFFF : uint16_t(dwell_ms);
   engine::push(am::StepSegment::make(F_CPU / 1000, ms, 0, 0));
   dwell_ms -= ms;
+}
+
+// From rest again: the held block's events after its stop.
+[[gnu::noinline]] void resume_now() {
+  holding = Hold::none;
+  resume_asked = false;
+  if (!stop.held()) return;
+  const float slower = stop.resume(runs, board::kStepTimerHz);
+  generating = true;
+  exit_moving = runs.exit_speed() > 0;
+  if (board::kGcode) plan().slow_next_entry(slower);
 }
 
 }  // namespace
@@ -176,7 +206,11 @@ void pump() {
   if (engine_was_busy && !engine::busy() && (generating || exit_moving)) ++starvations;
   for (;;) {
     if (engine::queue_full()) break;
+    if (board::kRealtime && generating && holding == Hold::stopping && !stop.stopped() && runs.between_runs() &&
+        !stop.stop(runs, last_interval, board::kStepTimerHz))
+      generating = exit_moving = false;
     if (!generating) {
+      if (board::kRealtime && holding != Hold::none && !(holding == Hold::stopping && carried > 0)) break;
       if (dwell_ms) {
         queue_dwell();
         continue;
@@ -186,16 +220,25 @@ void pump() {
     const am::StepRun r = runs.next_run();
     if (r.count == 0) {
       generating = false;
+      if (board::kRealtime && stop.stopped()) {
+        carried = stop.carried(runs);
+        exit_moving = carried > 0;
+      }
       continue;
     }
     am::StepSegment s = am::StepSegment::make(r.interval, r.count, axis_mask, dir_mask);
     s.block = serial;
     engine::push(s);
+    if (board::kRealtime) last_interval = r.interval;
     if (board::kOdometer) odometer::queued(r.count);
   }
   // From rest the engine starts on a full queue, or on all there is for now.
   if (engine::queue_full() || !generating) engine::start();
   engine_was_busy = engine::busy();
+  if (board::kRealtime) {
+    if (holding == Hold::stopping && !generating && !(carried > 0) && !engine_was_busy) holding = Hold::held;
+    if (holding == Hold::held && resume_asked) resume_now();
+  }
   if (idle()) {
     starting = false;
     draining = false;
@@ -209,5 +252,24 @@ bool handed_over() {
 }
 
 bool at_rest() { return handed_over() && !engine::busy(); }
+
+bool busy() { return !idle() || engine::busy(); }
+
+void hold() {
+  if (holding != Hold::none) return;
+  resume_asked = false;
+  holding = Hold::stopping;
+  // A block that ended at speed with the next not taken yet: the next one
+  // slows down from its planned entry.
+  carried = !generating && exit_moving ? 1.0f : 0.0f;
+  pump();
+}
+
+void resume() {
+  resume_asked = holding != Hold::none;
+  pump();
+}
+
+Hold hold_state() { return holding; }
 
 }  // namespace path

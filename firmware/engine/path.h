@@ -68,5 +68,23 @@ void start();
 void pump();
 bool handed_over();
 bool at_rest();
+// Blocks or steps remain (asking changes nothing, unlike handed_over()).
+bool busy();
+
+// Feed hold, on a board with kRealtime. hold() slows the motion down to rest
+// at each block's own acceleration, from the speed it has reached at the
+// end of what the engine has queued (at most kQueueSize segments of under
+// 2^15 ticks in a cruise, core/motion/trapezoid.h; a ramp's runs in a ramp): through as many blocks as that
+// takes, a stop within a block keeping the rest of it. hold_state() says
+// stopping, then held once the axes are at rest; nothing new starts while
+// held (blocks still arrive and are planned). resume() (also while still
+// stopping: it waits) runs the rest of the held block from rest to its
+// planned exit, lowering the next block's entry as much as that exit is
+// missed. Every step is kept: the positions end exactly where they would
+// have without the hold.
+enum class Hold : uint8_t { none, stopping, held };
+void hold();
+void resume();
+Hold hold_state();
 
 }  // namespace path

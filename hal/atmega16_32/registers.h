@@ -33,6 +33,9 @@ constexpr uint8_t pin_io_address(char port) {
 #define HAL_UART_RX_VECT USART_RXC_vect
 #define HAL_UART_UDRE_VECT USART_UDRE_vect
 
+// Reset cause flags (WDRF: the watchdog reset the chip).
+#define HAL_RESET_FLAGS MCUCSR
+
 #define HAL_TIMER1_MASK TIMSK
 #define HAL_TIMER1_FLAGS TIFR
 

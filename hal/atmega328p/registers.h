@@ -31,6 +31,9 @@ constexpr uint8_t pin_io_address(char port) {
 #define HAL_UART_RX_VECT USART_RX_vect
 #define HAL_UART_UDRE_VECT USART_UDRE_vect
 
+// Reset cause flags (WDRF: the watchdog reset the chip).
+#define HAL_RESET_FLAGS MCUSR
+
 #define HAL_TIMER1_MASK TIMSK1
 #define HAL_TIMER1_FLAGS TIFR1
 

@@ -39,6 +39,14 @@ inline void stop() {
   HAL_TIMER1_FLAGS = _BV(OCF1A);
 }
 
+// Stops the clock at once and forces OC1A low (a soft reset: no further
+// edge, timed or hardware-made, after this).
+inline void halt() {
+  TCCR1B = _BV(WGM12);
+  TCCR1A = kOc1aClear;
+  HAL_FORCE_OC1A_REG = HAL_FORCE_OC1A_VALUE;
+}
+
 inline void set_compare(uint16_t compare) { OCR1A = compare; }
 
 // Hardware step pulses on OC1A. The rising edge is made by the compare match

@@ -9,7 +9,13 @@ namespace hal {
 namespace uart {
 namespace {
 
-constexpr uint8_t kRxSize = 64;
+// The program sets the receive ring's size (a power of two up to 128): 128
+// where grbl's senders count characters against it, 64 otherwise.
+#ifndef HAL_UART_RX_SIZE
+#define HAL_UART_RX_SIZE 64
+#endif
+constexpr uint8_t kRxSize = HAL_UART_RX_SIZE;
+static_assert(kRxSize <= 128 && (kRxSize & (kRxSize - 1)) == 0, "HAL_UART_RX_SIZE: a power of two up to 128");
 constexpr uint8_t kTxSize = 64;
 
 uint8_t rx_buf[kRxSize];
@@ -97,6 +103,9 @@ ISR(HAL_UART_RX_VECT) {
   const uint8_t c = HAL_UDR;  // clears RXC: no re-entry until the next byte
   sei();
   if (status & (_BV(HAL_DOR) | _BV(HAL_FE))) rx_lost = true;
+#ifdef HAL_UART_REALTIME
+  if (take_realtime(c)) return;
+#endif
   const uint8_t head = rx_head;
   if (uint8_t(head - rx_tail) == kRxSize) {
     rx_lost = true;

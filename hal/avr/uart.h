@@ -2,11 +2,17 @@
 //
 // Contract
 //   init() sets the baud rate with U2X (the closest divisor for 16 and 8 MHz
-//   parts) and enables the receive interrupt. Received bytes wait in a 64-byte
-//   ring; if it fills, further bytes are dropped and overrun() reports it once
+//   parts) and enables the receive interrupt. Received bytes wait in a ring
+//   of HAL_UART_RX_SIZE bytes (64, or 128 where the program sets it: grbl's
+//   senders keep up to 128 bytes in flight); if it fills,
+//   further bytes are dropped and overrun() reports it once
 //   (as does a hardware data overrun or framing error), so the protocol layer
 //   can answer with an error instead of silently losing a line. write() blocks
 //   only while the 64-byte transmit ring is full.
+//   With HAL_UART_REALTIME defined, take_realtime(c), which the program
+//   defines, sees every received byte first, in the receive interrupt with
+//   interrupts enabled: it takes the program's realtime commands out of the
+//   stream there, even mid-line and with the ring full.
 #pragma once
 #include <stdint.h>
 
@@ -23,6 +29,7 @@ void write(const char* s);
 void write_P(const char* progmem_s);
 void write_u32(uint32_t v);
 void write_i32(int32_t v);
+bool take_realtime(uint8_t c);  // true: c is consumed, not queued
 
 }  // namespace uart
 }  // namespace hal

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/motion/trapezoid.h"
+#include "tools/golden/trapezoid_golden.h"
 
 namespace am {
 // Reads the generator's state between calls: which call plans a run (float
@@ -401,7 +402,30 @@ TEST(TrapezoidCruise, LongSlowCruiseIsExactWholeTicks) {
     ++count;
   }
   EXPECT_EQ(events, 1000000u);
-  EXPECT_EQ(count, 16u);  // 15 runs of 65535 and the rest
+  EXPECT_EQ(count, 1000000u);  // 160000 ticks >= 2^17: one event per cruise run
+}
+
+// Cruise runs last under 2^17 ticks (a feed hold waits for what is queued):
+// 65535 >> floor(log2 c) events each, at every cruise interval c.
+TEST(TrapezoidCruise, CruiseRunsStayUnderTwoToTheSeventeenTicks) {
+  for (uint32_t c = 1; c <= (1u << 24); c = c * 3 / 2 + 1) {
+    am::TrapezoidRuns runs;
+    const float v = 16000000.0f / float(c);
+    ASSERT_TRUE(runs.start({200000, v, v, v, 1000}, 16000000)) << c;
+    uint32_t events = 0;
+    // Entry, cruise and exit alike: every run is a cruise run, at the
+    // generator's whole-tick interval (c or c + 1 after float rounding).
+    for (StepRun r = runs.next_run(); r.count; r = runs.next_run()) {
+      uint32_t bits = 0;
+      while ((r.interval >> bits) > 1) ++bits;
+      const uint32_t cap = (65535u >> bits) ? (65535u >> bits) : 1;
+      EXPECT_LE(r.interval - c, 1u) << c;
+      EXPECT_EQ(r.count, std::min<uint32_t>(cap, 200000 - events)) << c;
+      EXPECT_TRUE(uint64_t(r.count) * r.interval < (1u << 17) || r.count == 1) << c;
+      events += r.count;
+    }
+    EXPECT_EQ(events, 200000u) << c;
+  }
 }
 
 TEST(TrapezoidCruise, ExactCeilingOfTheCruiseInterval) {
@@ -593,92 +617,15 @@ TEST(TrapezoidLimits, NoIntervalShorterThanTheCruiseInterval) {
   }
 }
 
-// The schedules the chip computes. The hashes were computed by this
-// generator built with avr-gcc 5.4 -Os for an ATmega328P, with avr-libc
-// 2.0's float routines, and run in simavr (docs/profile.md). The host must
-// reproduce them bit for bit: any float expression rounded differently (an
-// a * b + c fused on a host with FMA, x87 evaluation, -ffast-math, a double
-// literal) changes them. A change of the generator changes them too: then
-// they must be recomputed on the chip, not copied from the host.
-struct GoldenBlock {
-  TrapezoidBlock b;
-  uint32_t tick_hz, hash;
-};
-const GoldenBlock kGolden[] = {
-    {{65000, 0, 160000, 0, 400000}, 16000000, 0xf15b94b2},
-    {{2500, 0, 40000, 0, 800000}, 16000000, 0x906cf3b9},
-    {{5000, 0, 20000, 300, 40000}, 16000000, 0x882f2545},
-    {{100, 1000, 1000, 0, 1000}, 16000000, 0xf866edaf},
-    {{100, 0, 5000, 5000, 1000}, 20000000, 0x148aa01b},
-    {{1000, 7000, 7000, 9000, 50000}, 16000000, 0x9a502c81},
-    {{50, 0, 250000, 0, 10}, 16000000, 0xdde3e305},
-    {{3, 12345.6f, 12345.6f, 12345.6f, 1000}, 8000000, 0x78fa049f},
-    {{40000, 0, 250000, 0, 2e6f}, 16000000, 0xf96ab27f},
-    {{19, 0.37f * 77.7f, 77.7f, 0.81f * 77.7f, 517}, 20000000, 0x698080cc},
-    {{4000, 0.9f * 99999, 99999, 0.05f * 99999, 33333}, 8000000, 0xa7fb73ba},
-    {{250, 0, 12345.6f, 12345.6f, 1.5e8f}, 16000000, 0x3a496825},
-    {{60000, 3000, 250000, 2000, 10}, 16000000, 0x01582291},
-    {{7, 0, 10, 0, 10}, 16000000, 0xb3ccabd3},
-    {{120000, 240000, 250000, 0, 31000}, 20000000, 0xc52854de},
-    {{15000, 5, 250000, 77, 99.9f}, 8000000, 0xdfb64185},
-};
-
-uint32_t mix(uint32_t h, uint32_t v) { return (h ^ v) * 16777619u; }
-uint32_t float_bits(float x) {
-  uint32_t u;
-  memcpy(&u, &x, sizeof u);
-  return u;
-}
-
-// 3000 pseudo-random blocks chained through exit_speed(), from integer
-// operations and float multiplications only (the same on both).
-struct ChainGen {
-  uint32_t s = 2463534242u;
-  uint32_t next() {
-    s ^= s << 13;
-    s ^= s >> 17;
-    s ^= s << 5;
-    return s;
-  }
-  float between(uint32_t lo, uint32_t hi) {  // a random significand, biased exponent in [lo, hi]
-    const uint32_t e = lo + next() % (hi - lo + 1), u = (e << 23) | (next() & 0x7FFFFF);
-    float x;
-    memcpy(&x, &u, sizeof x);
-    return x;
-  }
-};
-
+// The schedules the chip computes: tools/golden/trapezoid_golden.h holds the
+// blocks and the hashes the chip gave, and how they were made.
 TEST(TrapezoidBitIdentity, SameSchedulesAsTheChip) {
-  for (const GoldenBlock& g : kGolden) {
-    am::TrapezoidRuns runs;
-    ASSERT_TRUE(runs.start(g.b, g.tick_hz));
-    uint32_t h = 2166136261u;
-    for (StepRun r = runs.next_run(); r.count; r = runs.next_run()) h = mix(mix(h, r.interval), r.count);
-    EXPECT_EQ(mix(h, float_bits(runs.exit_speed())), g.hash) << describe(g.b, g.tick_hz);
+  for (const am::golden::Block& g : am::golden::kBlocks) {
+    EXPECT_EQ(am::golden::hash_block(g.b, g.tick_hz), g.hash) << describe(g.b, g.tick_hz);
   }
-  const uint32_t kHz[] = {16000000, 8000000, 20000000};
-  ChainGen gen;
-  am::TrapezoidRuns runs;
-  float entry = 0;
-  uint32_t h = 2166136261u, step_runs = 0;
-  const int kBlocks = 3000;
-  for (int i = 0; i < kBlocks; ++i) {
-    const float cruise = gen.between(130, 144);  // 8 .. 65536 events/s
-    const float accel = gen.between(131, 150);   // 16 .. 2^24 events/s^2
-    const uint32_t n = 1 + gen.next() % (1u << (gen.next() % 13));
-    const float exit = i + 1 == kBlocks ? 0 : cruise * gen.between(120, 126);
-    const uint32_t tick_hz = kHz[gen.next() % 3];
-    if (!runs.start({n, entry, cruise, exit, accel}, tick_hz)) {
-      h = mix(h, 0xDEAD);
-      continue;
-    }
-    for (StepRun r = runs.next_run(); r.count; r = runs.next_run(), ++step_runs)
-      h = mix(mix(h, r.interval), r.count);
-    entry = runs.exit_speed();
-    h = mix(h, float_bits(entry));
-  }
-  EXPECT_EQ(step_runs, 38152u);
-  EXPECT_EQ(h, 0x4b7b2eceu);
+  const am::golden::ChainHash c = am::golden::hash_chain();
+  EXPECT_EQ(c.step_runs, am::golden::kChainStepRuns);
+  EXPECT_EQ(c.hash, am::golden::kChainHash);
 }
 
 }  // namespace

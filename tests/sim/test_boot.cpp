@@ -1,4 +1,5 @@
 // Every board image boots in its safe state, greets the host and answers.
+#include <cstdio>
 #include <string>
 
 #include "sim_fixture.h"
@@ -14,16 +15,22 @@ struct Image {
 
 class Boot : public ::testing::TestWithParam<Image> {};
 
+// Whether the image takes the direct commands (MOVE, POS, ...) beside G-code.
+bool has_commands(const char* image) {
+  return sim::Machine(simtest::image(image)).board().program & am::kProgramCommands;
+}
+
 TEST_P(Boot, BannerNamesBoardAndClockThenAnswers) {
   const Image& img = GetParam();
-  auto m = simtest::run(img.name, {"POS", "NOPE"}, 1);
+  const bool commands = has_commands(img.name);
+  auto m = simtest::run(img.name, {commands ? "POS" : "M114", commands ? "NOPE" : "G5"}, 1);
   const std::string expected = std::string("avrmotion ") + AVRMOTION_VERSION_STRING + " board=" + img.board +
                                " mcu=" + img.mcu + " f_cpu=" + std::to_string(img.f_cpu);
   EXPECT_EQ(m->serial().banner(), expected);
   EXPECT_EQ(m->board().f_cpu, img.f_cpu);
   ASSERT_EQ(m->serial().responses().size(), 2u);
   EXPECT_EQ(m->serial().responses()[0].answer, "ok");
-  EXPECT_EQ(m->serial().responses()[1].answer, "error: unknown command");
+  EXPECT_EQ(m->serial().responses()[1].answer, commands ? "error: unknown command" : "error: unsupported G or M code");
   // No axis moved and nothing was decoded as a step.
   for (const sim::AxisTrace& a : m->axes()) EXPECT_TRUE(a.step_cycles.empty()) << a.name;
 }
@@ -32,9 +39,19 @@ TEST_P(Boot, EveryAxisMovesExactlyAsCommanded) {
   const Image& img = GetParam();
   std::vector<std::string> script;
   sim::Machine probe(simtest::image(img.name));
+  const bool commands = probe.board().program & am::kProgramCommands;
+  if (!commands) script.push_back("G91");
   for (const sim::AxisTrace& a : probe.axes()) {
-    script.push_back(std::string("MOVE ") + a.name + "37 F2000 A20000");
-    script.push_back(std::string("MOVE ") + a.name + "-12 F2000 A20000");
+    if (commands) {
+      script.push_back(std::string("MOVE ") + a.name + "37 F2000 A20000");
+      script.push_back(std::string("MOVE ") + a.name + "-12 F2000 A20000");
+    } else {  // in mm: steps over steps per mm
+      char line[64];
+      std::snprintf(line, sizeof line, "G1 %c%.4f F120", a.name, 37 / a.steps_per_mm);
+      script.push_back(line);
+      std::snprintf(line, sizeof line, "G1 %c%.4f", a.name, -12 / a.steps_per_mm);
+      script.push_back(line);
+    }
   }
   auto m = simtest::run(img.name, script, 5);
   EXPECT_EQ(m->serial().lines_ok(), script.size());

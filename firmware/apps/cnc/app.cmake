@@ -6,3 +6,10 @@ file(STRINGS ${CMAKE_CURRENT_SOURCE_DIR}/boards/${board_name}.h heater_line REGE
 if(heater_line)
   list(APPEND APP_PARTS services)
 endif()
+# A board with grbl's realtime bytes (`constexpr bool kRealtime = true;`)
+# gets the 128-byte receive ring grbl's senders count characters against,
+# and the receive interrupt hands every byte to its realtime filter first.
+file(STRINGS ${CMAKE_CURRENT_SOURCE_DIR}/boards/${board_name}.h realtime_line REGEX "^constexpr bool kRealtime = true;")
+if(realtime_line)
+  list(APPEND APP_DEFINITIONS HAL_UART_RX_SIZE=128 HAL_UART_REALTIME)
+endif()

@@ -245,6 +245,7 @@ bool execute() {
       board::Axes::energise(uint8_t((1u << kAxes) - 1));
       break;
     case am::GcodeActionKind::release:
+    case am::GcodeActionKind::wait:
     case am::GcodeActionKind::program_end:
       if (!path::at_rest()) return false;
       if (action.kind == am::GcodeActionKind::release) path::release();
@@ -262,5 +263,7 @@ bool execute() {
   reply::ok();
   return true;
 }
+
+uint32_t feed_mm_per_min() { return uint32_t(interpreter().state().modal.feed) / 10000u; }
 
 }  // namespace gcode

@@ -16,6 +16,7 @@
 //   times out after the motion before it and to the tick. G2/G3 are refused
 //   (the arc interpolator is not on the engine yet).
 #pragma once
+#include <stdint.h>
 
 namespace gcode {
 
@@ -24,5 +25,7 @@ bool claims(const char* line);
 // False when the line was refused (its error is printed).
 bool accept(const char* line);
 bool execute();
+// The modal feed, whole mm/min (0 before the first F).
+uint32_t feed_mm_per_min();
 
 }  // namespace gcode

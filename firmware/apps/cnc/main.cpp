@@ -5,13 +5,16 @@
 #include <avr/interrupt.h>
 
 #include "../../../hal/avr/uart.h"
+#include "../../../hal/avr/watchdog.h"
 #include "../../board.h"
 #include "protocol.h"
+#include "realtime.h"
 #include "../../engine/clock.h"
 #include "../../engine/step_engine.h"
 #include "../../services/heater.h"
 
 int main() {
+  if (board::kRealtime) hal::watchdog::after_reset();  // a soft reset's watchdog off
   hal_disable_jtag();
   board::init();
   engine::init();
@@ -22,6 +25,7 @@ int main() {
   protocol::banner();
   for (;;) {
     protocol::poll();
+    if (board::kRealtime) realtime::poll();
     if (board::kHeater) heater::poll();
   }
 }

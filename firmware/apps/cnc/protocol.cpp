@@ -145,7 +145,7 @@ void on_line(Reader::Line line) {
   } else if (line == Reader::Line::bad_byte) {
     error(PSTR("control or non-ASCII byte in line"));
   } else {
-    if (board::kGcode && gcode::claims(reader.text())) {
+    if (board::kGcode && (!board::kCommands || gcode::claims(reader.text()))) {
       if (gcode::accept(reader.text())) waiting = Waiting::gcode;
       return;
     }
@@ -173,7 +173,7 @@ void banner() {
 void poll() {
   path::pump();
   if (waiting != Waiting::nothing) {
-    const bool done = waiting == Waiting::command ? execute(command) : (!board::kGcode || gcode::execute());
+    const bool done = board::kCommands && waiting == Waiting::command ? execute(command) : (!board::kGcode || gcode::execute());
     if (!done) return;
     waiting = Waiting::nothing;
   }

@@ -1,0 +1,80 @@
+#include "realtime.h"
+
+#include <avr/pgmspace.h>
+
+#include "../../../core/text/fixed_number.h"
+#include "../../../hal/avr/step_timer.h"
+#include "../../../hal/avr/uart.h"
+#include "../../../hal/avr/watchdog.h"
+#include "../../board.h"
+#include "../../engine/path.h"
+#include "../../engine/planner.h"
+#include "gcode.h"
+
+namespace realtime {
+namespace {
+
+constexpr uint8_t kStatus = 1, kHold = 2, kResume = 4;
+volatile uint8_t asked;
+
+void write_state() {
+  switch (path::hold_state()) {
+    case path::Hold::stopping: hal::uart::write_P(PSTR("Hold:1")); return;
+    case path::Hold::held: hal::uart::write_P(PSTR("Hold:0")); return;
+    default: hal::uart::write_P(path::busy() ? PSTR("Run") : PSTR("Idle")); return;
+  }
+}
+
+[[gnu::noinline]] void report() {
+  int32_t now[board::Axes::count];
+  planner::positions_now(now);
+  hal::uart::write('<');
+  write_state();
+  hal::uart::write_P(PSTR("|MPos:"));
+  char buf[14];
+  for (uint8_t i = 0; i < board::Axes::count; ++i) {
+    if (i) hal::uart::write(',');
+    // Micrometres: units over units per metre (full steps per metre times
+    // units per full step), in float: 1 um in 10 m.
+    const float per_um = float(board::Axes::steps_per_m_at(i)) * board::Axes::units_per_full_step_at(i) * 1e-6f;
+    const float um = float(now[i]) / per_um;
+    am::format_fixed(buf, int32_t(um < 0 ? um - 0.5f : um + 0.5f), 3);
+    hal::uart::write(buf);
+  }
+  hal::uart::write_P(PSTR("|FS:"));
+  hal::uart::write_u32(path::busy() ? gcode::feed_mm_per_min() : 0);
+  hal::uart::write_P(PSTR(",0>\n"));
+}
+
+}  // namespace
+
+void poll() {
+  uint8_t got;
+  {
+    const uint8_t sreg = SREG;
+    cli();
+    got = asked;
+    asked = 0;
+    SREG = sreg;
+  }
+  if (got & kHold) path::hold();
+  if (got & kResume) path::resume();
+  if (got & kStatus) report();
+}
+
+}  // namespace realtime
+
+bool hal::uart::take_realtime(uint8_t c) {
+  if (!board::kRealtime) return false;
+  using namespace realtime;
+  switch (c) {
+    case '?': asked |= kStatus; return true;
+    case '!': asked |= kHold; return true;
+    case '~': asked |= kResume; return true;
+    case 0x18:
+      cli();
+      hal::step_timer::halt();
+      hal::watchdog::reset();
+    default: return false;
+  }
+}

@@ -1,0 +1,153 @@
+// grbl's realtime bytes on the real m32-cnc image (firmware/apps/cnc/
+// realtime.h): `?` mid-move reports where the motors are, `!` slows the
+// move to rest at its acceleration and `~` finishes it exactly, Ctrl-X stops
+// the steps at once and restarts the chip. The X axis runs 1000 steps/mm at
+// 500 mm/s^2 (500000 steps/s^2, board defaults) on the 16 MHz step timer.
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "sim_fixture.h"
+
+namespace {
+
+constexpr double kTick = 16000000.0;
+constexpr double kAccel = 500000.0;  // steps/s^2
+
+// Runs until X has made `steps` steps.
+void run_to_step(sim::Machine& m, size_t steps) {
+  m.run([&] { return m.axis('X')->step_cycles.size() >= steps; }, uint64_t(5 * kTick));
+  ASSERT_GE(m.axis('X')->step_cycles.size(), steps);
+}
+
+// The last line the firmware printed that starts with '<', once one has come.
+std::string status_after(sim::Machine& m, size_t seen) {
+  m.run(
+      [&] {
+        const auto& r = m.serial().received();
+        for (size_t i = seen; i < r.size(); ++i)
+          if (!r[i].empty() && r[i][0] == '<') return true;
+        return false;
+      },
+      uint64_t(0.1 * kTick));
+  const auto& r = m.serial().received();
+  for (size_t i = seen; i < r.size(); ++i)
+    if (!r[i].empty() && r[i][0] == '<') return r[i];
+  return "";
+}
+
+// MPos's first number, in steps (1000 per mm).
+long mpos_x_steps(const std::string& status) {
+  const size_t at = status.find("MPos:");
+  if (at == std::string::npos) return -1;
+  return std::lround(std::stod(status.substr(at + 5)) * 1000);
+}
+
+TEST(Realtime, StatusMidMoveIsWhereThePinsAre) {
+  for (size_t at : {1500u, 9000u, 19000u}) {
+    sim::Machine m(simtest::image("m32-cnc"));
+    m.serial().add_line("G1 X20 F1200");
+    run_to_step(m, at);
+    const size_t before = m.axis('X')->step_cycles.size(), seen = m.serial().received().size();
+    m.serial().send_raw("?");
+    const std::string s = status_after(m, seen);
+    const size_t after = m.axis('X')->step_cycles.size();
+    ASSERT_FALSE(s.empty());
+    EXPECT_EQ(s.rfind("<Run|MPos:", 0), 0u) << s;
+    EXPECT_NE(s.find("|FS:1200,0>"), std::string::npos) << s;
+    const long x = mpos_x_steps(s);
+    EXPECT_GE(x, long(before)) << s;
+    EXPECT_LE(x, long(after)) << s;
+    printf("Realtime: '%s' with %zu..%zu steps on the pins\n", s.c_str(), before, after);
+    ASSERT_EQ(m.run_script(uint64_t(5 * kTick)), sim::RunEnd::done);
+    EXPECT_EQ(m.axis('X')->steps(), 20000);
+    const size_t idle_seen = m.serial().received().size();
+    m.serial().send_raw("?");
+    EXPECT_EQ(status_after(m, idle_seen), "<Idle|MPos:20.000,0.000,0.000,0.000|FS:0,0>");
+  }
+}
+
+// Every step of a stretch against constant acceleration `a` (negative:
+// slowing) from speed v0 at the step before it (cycle t0, position 0),
+// after `cruise` steps at v0: the worst distance from the ideal motion, in
+// steps.
+double worst_from_ideal(const std::vector<uint64_t>& st, size_t first, size_t count, uint64_t t0, double v0,
+                        double a, double cruise = 0) {
+  double worst = 0;
+  const double tc = cruise / std::max(v0, 1.0);
+  for (size_t k = 0; k < count; ++k) {
+    const double t = double(st[first + k] - t0) / kTick, u = std::max(0.0, t - tc);
+    const double x = v0 * std::min(t, tc) + v0 * u + a * u * u / 2;
+    worst = std::max(worst, std::fabs(double(k + 1) - x));
+  }
+  return worst;
+}
+
+TEST(Realtime, HoldSlowsToRestAndResumeEndsExactly) {
+  for (size_t at : {300u, 6000u, 25000u}) {
+    sim::Machine m(simtest::image("m32-cnc"));
+    m.serial().add_line("G1 X30 F1200");  // 20000 steps/s: 800 ticks
+    run_to_step(m, at);
+    const uint64_t asked = m.cycles();
+    m.serial().send_raw("!");
+    const auto& st = m.axis('X')->step_cycles;
+    // At rest: no step for 100 ms.
+    m.run([&] { return m.cycles() > st.back() + uint64_t(0.1 * kTick); }, uint64_t(2 * kTick));
+    const size_t stopped = st.size();
+    ASSERT_LT(stopped, 30000u);
+    const size_t seen = m.serial().received().size();
+    m.serial().send_raw("?");
+    EXPECT_EQ(status_after(m, seen).rfind("<Hold:0|MPos:" + std::to_string(stopped / 1000) + ".", 0), 0u);
+
+    // The stop: n = floor(v^2 / 2a) + 1 events from the speed reached v: the
+    // part of an event beyond v^2 / 2a at v, then constant deceleration to
+    // rest; every step within half a step of it, anchored at the step
+    // before it.
+    const double v = at < 800 ? 0 : kTick / double(st[stopped - 402] - st[stopped - 403]);
+    if (v > 19000) {
+      const size_t events = size_t(v * v / (2 * kAccel)) + 1, first = stopped - events;
+      const double worst =
+          worst_from_ideal(st, first, events, st[first - 1], v, -kAccel, double(events) - v * v / (2 * kAccel));
+      EXPECT_LE(worst, 0.5) << "hold at " << at;
+      printf("Realtime: hold at step %zu (asked at %.1f ms): %zu steps to rest from %.0f steps/s, %.3f steps "
+             "from constant deceleration, %.1f ms after the byte\n",
+             at, asked / kTick * 1000, events, v, worst, (st[stopped - 1] - asked) / kTick * 1000);
+    }
+    // Never faster than the cruise, from the byte to rest.
+    // (A software-pulsed edge comes up to 48 cycles late: docs/step-engine.md.)
+    for (size_t k = at + 1; k < stopped; ++k) EXPECT_GE(st[k] - st[k - 1], 800u - 48u) << k;
+
+    m.serial().send_raw("~");
+    ASSERT_EQ(m.run_script(uint64_t(5 * kTick)), sim::RunEnd::done);
+    EXPECT_EQ(m.axis('X')->steps(), 30000);
+    // From rest again: the first steps on constant acceleration.
+    const uint64_t t0 = st[stopped] - uint64_t(std::sqrt(2 / kAccel) * kTick);
+    EXPECT_LE(worst_from_ideal(st, stopped, 300, t0, 0, kAccel), 0.5) << "resume after " << at;
+    for (const std::string& e : m.serial().errors()) ADD_FAILURE() << e;
+  }
+}
+
+TEST(Realtime, CtrlXStopsTheStepsAtOnceAndRestarts) {
+  sim::Machine m(simtest::image("m32-cnc"));
+  m.serial().add_line("G1 X20 Y10 F1200");
+  run_to_step(m, 8000);
+  const std::string banner = m.serial().banner();
+  m.serial().send_raw("\x18");
+  const size_t banners = m.serial().received().size();
+  m.run([&] { return m.serial().received().size() > banners; }, uint64_t(0.1 * kTick));
+  // simavr's UART raises the receive interrupt one frame (10 bits) after
+  // the byte is handed to it: the moment the stop bit would be in.
+  const uint64_t in = m.serial().last_byte_cycle() + uint64_t(10 * kTick / 115200);
+  ASSERT_GT(m.serial().received().size(), banners) << "no banner after the soft reset";
+  EXPECT_EQ(m.serial().received().back(), banner);
+  for (char a : {'X', 'Y'}) {
+    const auto& st = m.axis(a)->step_cycles;
+    ASSERT_FALSE(st.empty());
+    // The receive interrupt runs within a few hundred cycles of the stop bit.
+    EXPECT_LT(st.back(), in + 400) << a;
+    printf("Realtime: Ctrl-X: last %c step %lld cycles after the byte was in; banner again after %.1f ms\n", a,
+           (long long)(st.back()) - (long long)in, (m.serial().received_cycles().back() - in) / kTick * 1000);
+  }
+}
+
+}  // namespace
