@@ -2,6 +2,13 @@
 // (firmware/boards/<name>.h) as AVRMOTION_BOARD_HEADER; nothing else in the
 // firmware names a board.
 #pragma once
+#include <stdint.h>
+
+// The line protocol's style (docs/protocol.md): grbl 1.1 for CNC senders,
+// Marlin for printer hosts. One style per image: both would not fit the
+// 32 KB parts' flash, so the switch is the board constant `kProtocol`.
+enum class Protocol : uint8_t { grbl, marlin };
+
 #include AVRMOTION_BOARD_HEADER
 
 // What a board header may leave out. A board's own declaration wins:
@@ -14,6 +21,10 @@ struct Heater;  // a heater's wiring (firmware/boards/m32.h), only with kHeater
 // counts where the motors are while they move. Without it, where the
 // queued motion ends (Marlin's logical position).
 constexpr bool kOdometer = true;
+constexpr Protocol kProtocol = Protocol::grbl;
+// The direct controls MOVE, POS, WAIT, RELEASE, MODE (docs/protocol.md)
+// beside G-code; about 2 KB of flash.
+constexpr bool kCommands = true;
 }  // namespace board_defaults
 namespace board {
 using namespace board_defaults;

@@ -14,16 +14,35 @@ struct Image {
 
 class Boot : public ::testing::TestWithParam<Image> {};
 
+// The printer image speaks Marlin and has no direct controls
+// (firmware/boards/m32.h); every other image speaks grbl.
+bool marlin(const Image& img) { return std::string(img.name) == "m32"; }
+
 TEST_P(Boot, BannerNamesBoardAndClockThenAnswers) {
   const Image& img = GetParam();
   auto m = simtest::run(img.name, {"POS", "NOPE"}, 1);
   const std::string expected = std::string("avrmotion ") + AVRMOTION_VERSION_STRING + " board=" + img.board +
                                " mcu=" + img.mcu + " f_cpu=" + std::to_string(img.f_cpu);
-  EXPECT_EQ(m->serial().banner(), expected);
+  const auto& got = m->serial().received();
+  ASSERT_GE(got.size(), 2u);
   EXPECT_EQ(m->board().f_cpu, img.f_cpu);
   ASSERT_EQ(m->serial().responses().size(), 2u);
-  EXPECT_EQ(m->serial().responses()[0].answer, "ok");
-  EXPECT_EQ(m->serial().responses()[1].answer, "error: unknown command");
+  const auto& r = m->serial().responses();
+  if (marlin(img)) {
+    EXPECT_EQ(m->serial().banner(), "start");
+    EXPECT_EQ(got[1], "echo:" + expected);
+    // Marlin answers a command it does not have with an echo and ok.
+    EXPECT_EQ(r[0].answer, "ok");
+    EXPECT_EQ(r[1].answer, "ok");
+    EXPECT_EQ(m->serial().messages(),
+              (std::vector<std::string>{"echo:Unknown command: \"POS\"", "echo:Unknown command: \"NOPE\""}));
+  } else {
+    EXPECT_EQ(m->serial().banner(), "Grbl 1.1h ['$' for help]");
+    EXPECT_EQ(got[1], "[MSG:" + expected + "]");
+    EXPECT_EQ(r[0].answer, "ok");
+    EXPECT_EQ(r[1].answer, "error:20");
+    EXPECT_EQ(r[1].reason, "unknown command");
+  }
   // No axis moved and nothing was decoded as a step.
   for (const sim::AxisTrace& a : m->axes()) EXPECT_TRUE(a.step_cycles.empty()) << a.name;
 }
@@ -32,9 +51,16 @@ TEST_P(Boot, EveryAxisMovesExactlyAsCommanded) {
   const Image& img = GetParam();
   std::vector<std::string> script;
   sim::Machine probe(simtest::image(img.name));
+  // The printer: the same steps as relative G-code moves (1000 steps/mm).
+  if (marlin(img)) script.push_back("G91");
   for (const sim::AxisTrace& a : probe.axes()) {
-    script.push_back(std::string("MOVE ") + a.name + "37 F2000 A20000");
-    script.push_back(std::string("MOVE ") + a.name + "-12 F2000 A20000");
+    if (marlin(img)) {
+      script.push_back(std::string("G1 ") + a.name + "0.037 F120");
+      script.push_back(std::string("G1 ") + a.name + "-0.012 F120");
+    } else {
+      script.push_back(std::string("MOVE ") + a.name + "37 F2000 A20000");
+      script.push_back(std::string("MOVE ") + a.name + "-12 F2000 A20000");
+    }
   }
   auto m = simtest::run(img.name, script, 5);
   EXPECT_EQ(m->serial().lines_ok(), script.size());

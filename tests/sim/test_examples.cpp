@@ -25,8 +25,10 @@ TEST(Examples, UnoDemo) {
   const auto lines = job("demo.txt");
   ASSERT_EQ(lines.size(), 9u);
   auto m = simtest::run("uno", lines, 30);
-  EXPECT_EQ(m->serial().errors(), std::vector<std::string>{"error: no such axis on this board"});
-  const std::vector<std::string> messages = {"warning: F clamped to 160000", "pos X:450 Y:-250 U:2048 Z:0"};
+  EXPECT_EQ(m->serial().errors(), std::vector<std::string>{"error:20"});
+  EXPECT_EQ(m->serial().reasons(), std::vector<std::string>{"no such axis on this board"});
+  const std::vector<std::string> messages = {"[MSG:F clamped to 160000]", "[MSG:no such axis on this board]",
+                                             "pos X:450 Y:-250 U:2048 Z:0"};
   EXPECT_EQ(m->serial().messages(), messages);
   EXPECT_DOUBLE_EQ(m->axis('X')->steps(), 450);  // 500 full steps, then 800 sixteenths back
   EXPECT_DOUBLE_EQ(m->axis('Y')->steps(), -250);
@@ -36,9 +38,9 @@ TEST(Examples, UnoDemo) {
 }
 
 TEST(Examples, M32Demo) {
-  auto m = simtest::run("m32", job("m32-demo.txt"), 30);
+  auto m = simtest::run("m32-cnc", job("m32-cnc-demo.txt"), 30);
   EXPECT_TRUE(m->serial().errors().empty());
-  const std::vector<std::string> messages = {"warning: F clamped to 40000", "pos X:0 Y:-15000 Z:500 E:3000"};
+  const std::vector<std::string> messages = {"[MSG:F clamped to 40000]", "pos X:0 Y:-15000 Z:500 E:3000"};
   EXPECT_EQ(m->serial().messages(), messages);
   EXPECT_DOUBLE_EQ(m->axis('Y')->steps(), -15000);
 }

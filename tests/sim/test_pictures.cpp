@@ -546,7 +546,7 @@ sim::AxisTrace step_axis(char name, double steps_per_mm) {
   return a;
 }
 
-sim::Response ok_line(const std::string& line, uint64_t sent) { return {line, "ok", sent, sent + 50}; }
+sim::Response ok_line(const std::string& line, uint64_t sent) { return {line, "ok", "", sent, sent + 50}; }
 
 // The path's points as (response index, kind, number of points) runs.
 struct Stretch {
