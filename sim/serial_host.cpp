@@ -150,12 +150,12 @@ void SerialHost::on_output(avr_irq_t*, uint32_t value, void* self) {
 }
 
 void SerialHost::on_line(const std::string& line) {
-  const bool first = received_.empty();
   received_.push_back(line);
   received_cycles_.push_back(avr_->cycle);
-  if (first) marlin_ = line == "start";
+  const bool banner = received_.size() <= kBannerLines;
+  if (received_.size() == 1) marlin_ = line == "start";
   std::string answer, reason;
-  const bool answered = !first && answer_of(answer, reason);
+  const bool answered = !banner && answer_of(answer, reason);
   if (relay_) {
     if (answered && next_answer_ < responses_.size()) {
       responses_[next_answer_].answer = answer;
@@ -164,8 +164,8 @@ void SerialHost::on_line(const std::string& line) {
     }
     return;
   }
-  if (first) {
-    send_next();  // the banner: the firmware is ready
+  if (banner) {
+    if (received_.size() == kBannerLines) send_next();  // the whole banner: the firmware is ready
     return;
   }
   if (!answered || !awaiting_answer_) return;

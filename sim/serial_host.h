@@ -9,7 +9,7 @@
 //
 // The first line the firmware prints is its banner (`Grbl 1.1h ...` or
 // Marlin's `start`, then a line naming the firmware); nothing is sent before
-// it. After the last script line the host sends WAIT (M400 to a Marlin
+// both of its lines are in. After the last script line the host sends WAIT (M400 to a Marlin
 // image; not counted as a script line), so finished() becomes true only once
 // all motion has ended. A line added once finished() is true is sent at
 // once, and a new WAIT after it.
@@ -61,7 +61,7 @@ class SerialHost {
   // half-sent one; lines still waiting for an answer never get one. Returns
   // the number of bytes dropped.
   size_t on_reset();
-  bool banner_seen() const { return !received_.empty(); }
+  bool banner_seen() const { return received_.size() >= kBannerLines; }  // both of its lines
 
   const std::string& banner() const;
   const std::vector<std::string>& received() const { return received_; }

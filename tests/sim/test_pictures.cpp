@@ -500,8 +500,7 @@ TEST(Pictures, UnoRunHasAPanelPerAxisAndQuantityEachOnItsOwnScale) {
 }
 
 TEST(Pictures, FourAxesOfTheM32KeepFourColours) {
-  auto m = simtest::run("m32", {"MOVE X200 F20000 A200000", "MOVE Y-150 F20000 A200000", "MOVE Z50 F2000 A20000",
-                                "MOVE E300 F5000 A50000"});
+  auto m = simtest::run("m32", {"G91", "G1 X0.2 F1200", "G1 Y-0.15 F1200", "G1 Z0.05 F120", "G1 E0.3 F300"});
   ASSERT_EQ(m->axes().size(), 4u);
   check_picture(draw(*m, "m32-pictures.svg"), *m);
 }
@@ -1070,7 +1069,7 @@ TEST(Pictures, AHotEndRowShowsItsTemperaturesSetpointAndDuty) {
   // thermistor climbs; the duty is full on while it is far below.
   sim::Machine m(simtest::image("m32"));
   sim::ThermalPlant plant(m);
-  for (const char* l : {"G4 P1", "WAIT", "M104 S200", "G4 P20"}) m.serial().add_line(l);
+  for (const char* l : {"G4 P1", "M400", "M104 S200", "G4 P20"}) m.serial().add_line(l);
   ASSERT_EQ(m.run_script(uint64_t(30) * m.f_cpu()), sim::RunEnd::done);
   const std::string path = temp_path("hot-end.svg");
   sim::write_run_plot(path, m, sim::PlotLabel{"hot end", sim::RunEnd::done, &plant});

@@ -339,18 +339,24 @@ TEST(ShieldModes, ModeWaitsForMotionToEnd) {
 
 TEST(ShieldModes, ModeErrors) {
   Session r({"MODE X8", "MODE E1", "MODE U16", "MODE U2", "MODE X64"});
-  const auto& got = r.m->serial().received();
-  const std::vector<std::string> expected_tail = {
-      "error: mode must be 0, 1, 2, 16, 32 or 64", "error: no such axis on this board",
-      "error: mode not available on this axis", "ok", "ok"};
-  // (The host ends every script with a WAIT: one more "ok".)
-  ASSERT_GE(got.size(), 6u);
-  EXPECT_EQ(std::vector<std::string>(got.end() - 6, got.end() - 1), expected_tail);
-  // A step/dir axis has no coils to sequence.
-  auto m32 = simtest::run("m32", {"MODE X1"});
-  const auto& m32_got = m32->serial().received();
-  ASSERT_GE(m32_got.size(), 2u);
-  EXPECT_EQ(m32_got[m32_got.size() - 2], "error: axis has no excitation modes");
+  const auto& got = r.m->serial().responses();
+  ASSERT_EQ(got.size(), 5u);
+  const std::vector<std::pair<std::string, std::string>> expected = {
+      {"error:104", "mode must be 0, 1, 2, 16, 32 or 64"},
+      {"error:20", "no such axis on this board"},
+      {"error:106", "mode not available on this axis"},
+      {"ok", ""},
+      {"ok", ""}};
+  for (size_t i = 0; i < got.size(); ++i) {
+    EXPECT_EQ(got[i].answer, expected[i].first) << got[i].line;
+    EXPECT_EQ(got[i].reason, expected[i].second) << got[i].line;
+  }
+  // A step/dir axis has no coils to sequence (the m32's CNC image: the
+  // printer's has no MODE).
+  auto m32 = simtest::run("m32-cnc", {"MODE X1"});
+  ASSERT_EQ(m32->serial().responses().size(), 1u);
+  EXPECT_EQ(m32->serial().responses()[0].answer, "error:105");
+  EXPECT_EQ(m32->serial().responses()[0].reason, "axis has no excitation modes");
 }
 
 TEST(ShieldModes, StepInterruptCyclesPerMode) {

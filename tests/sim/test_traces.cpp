@@ -61,7 +61,7 @@ uint64_t ps_per_cycle(const sim::Machine& m) { return 1000000000000ull / m.f_cpu
 
 TEST(Vcd, StepEdgesAndInterruptWindowsMatchTheReport) {
   const std::string path = temp_path("m32.vcd");
-  auto m = traced("m32", {"MOVE X2000 F20000 A200000", "MOVE Y-500 F5000 A50000"}, path);
+  auto m = traced("m32", {"G91", "G1 X2 F1200", "G1 Y-0.5 F300"}, path);
   const vcdread::Trace t = vcdread::read(path);
   ASSERT_EQ(t.error, "");
   EXPECT_EQ(t.redundant, 0u) << "only changes are written";
@@ -150,7 +150,7 @@ TEST(Vcd, HardwareTimedStepPinIsTracedEdgeForEdge) {
 
 TEST(Vcd, OnlyTheChosenSignals) {
   const std::string path = temp_path("m32-chosen.vcd");
-  traced("m32", {"MOVE X100 F20000 A200000"}, path, "X, isr7, PD3");
+  traced("m32", {"G1 X0.1 F1200"}, path, "X, isr7, PD3");
   const vcdread::Trace t = vcdread::read(path);
   ASSERT_EQ(t.error, "");
   std::vector<std::string> names;
