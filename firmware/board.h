@@ -2,6 +2,13 @@
 // (firmware/boards/<name>.h) as AVRMOTION_BOARD_HEADER; nothing else in the
 // firmware names a board.
 #pragma once
+#include <stdint.h>
+
+// The line protocol's style (docs/protocol.md): grbl 1.1 for CNC senders,
+// Marlin for printer hosts. One style per image: both would not fit the
+// 32 KB parts' flash, so the switch is the board constant `kProtocol`.
+enum class Protocol : uint8_t { grbl, marlin };
+
 #include AVRMOTION_BOARD_HEADER
 
 // What a board header may leave out. A board's own declaration wins:
@@ -19,9 +26,9 @@ constexpr bool kOdometer = true;
 // feed hold, `~` resume, Ctrl-X soft reset, taken in the receive interrupt
 // and never put into a line.
 constexpr bool kRealtime = false;
-// The direct commands beside G-code (MOVE, POS, WAIT, RELEASE, MODE:
-// docs/protocol.md, about 2 KB of flash); a board without them answers
-// every other line as unknown G-code.
+constexpr Protocol kProtocol = Protocol::grbl;
+// The direct controls MOVE, POS, WAIT, RELEASE, MODE (docs/protocol.md)
+// beside G-code; about 2 KB of flash.
 constexpr bool kCommands = true;
 }  // namespace board_defaults
 namespace board {

@@ -10,9 +10,9 @@
 #                             step intervals per axis)
 #   build/<job>-<board>.vcd   the trace of pins and interrupts (gtkwave FILE)
 # where <job> is the job file's name without .txt or .gcode, and the "-<board>" is left
-# out when the name already starts with the board ("m32-demo" on m32):
-# demo.txt on uno gives build/demo-uno.svg, examples/m32-demo.txt on m32
-# build/m32-demo.svg.
+# out when the name already starts with the board ("m32-direct-demo" on m32-direct):
+# demo.txt on uno gives build/demo-uno.svg, examples/m32-direct-demo.txt on m32-direct
+# build/m32-direct-demo.svg.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/setup.sh

@@ -72,7 +72,7 @@ const std::vector<Table>& engine_tables();
 std::string move_line(const Scenario& s);
 
 // The images of the size table, in its order.
-extern const char* const kSizeImages[6];
+extern const char* const kSizeImages[7];
 
 // Each part's flash and RAM, bytes.
 struct PartSize {

@@ -18,16 +18,16 @@ const std::vector<Table>& engine_tables() {
         {"uno", 'Z', 250000, 300000, 100000, 'B', 1}}},
       {"m32 axis X, software STEP pulse (GPIO in the interrupt), 200000 steps/s^2",
        "axis X, software STEP pulse (GPIO in the interrupt), 200000 steps/s^2", "m32 X, software STEP pulse",
-       {{"m32", 'X', 10000, 200000, 20000, 0, 0},
-        {"m32", 'X', 40000, 200000, 40000, 0, 0},
-        {"m32", 'X', 80000, 200000, 40000, 0, 0}}},
+       {{"m32-direct", 'X', 10000, 200000, 20000, 0, 0},
+        {"m32-direct", 'X', 40000, 200000, 40000, 0, 0},
+        {"m32-direct", 'X', 80000, 200000, 40000, 0, 0}}},
       {"m32 axes X Y Z (and E), one coordinated diagonal block, software STEP pulses, 200000 steps/s^2\n"
        "(figures per event of the dominant axis X; every axis steps at every event)",
        "axes X Y Z (E), one coordinated diagonal block, software STEP pulses, 200000 steps/s^2",
        "m32 XYZ(E), coordinated",
-       {{"m32", 'X', 10000, 200000, 20000, 0, 0, "YZ"},
-        {"m32", 'X', 40000, 200000, 40000, 0, 0, "YZ"},
-        {"m32", 'X', 40000, 200000, 40000, 0, 0, "YZE"}}},
+       {{"m32-direct", 'X', 10000, 200000, 20000, 0, 0, "YZ"},
+        {"m32-direct", 'X', 40000, 200000, 40000, 0, 0, "YZ"},
+        {"m32-direct", 'X', 40000, 200000, 40000, 0, 0, "YZE"}}},
       {"Uno axis X, Motor Shield latch (two-phase), 20000 steps/s^2",
        "axis X, Adafruit Motor Shield v1 latch (74HC595, two-phase), 20000 steps/s^2", "uno X, shield latch",
        {{"uno", 'X', 2000, 20000, 4000, 0, 0}, {"uno", 'X', 20000, 20000, 20000, 0, 0}}},
@@ -35,7 +35,7 @@ const std::vector<Table>& engine_tables() {
   return tables;
 }
 
-const char* const kSizeImages[6] = {"uno", "m32", "m32-cnc", "m32-driver", "m16", "m16-8mhz"};
+const char* const kSizeImages[7] = {"uno", "m32", "m32-cnc", "m32-direct", "m32-driver", "m16", "m16-8mhz"};
 
 // Flash an image may fill: the Uno's bootloader keeps 512 of the 328P's
 // 32768 bytes (firmware/CMakeLists.txt fails the link beyond).

@@ -56,7 +56,7 @@ void SerialHost::relay_byte(char c, uint64_t cycle) {
   }
   if (relay_line_.empty()) return;
   ++lines_sent_;
-  responses_.push_back({relay_line_, "", relay_line_cycle_, 0});
+  responses_.push_back({relay_line_, "", "", relay_line_cycle_, 0});
   relay_line_.clear();
 }
 
@@ -92,13 +92,48 @@ std::vector<std::string> SerialHost::errors() const {
   return out;
 }
 
-std::vector<std::string> SerialHost::messages() const {
+std::vector<std::string> SerialHost::reasons() const {
   std::vector<std::string> out;
-  for (size_t i = 1; i < received_.size(); ++i) {
-    const std::string& l = received_[i];
-    if (!is_ok(l) && l.rfind("error", 0) != 0) out.push_back(l);
+  for (const Response& r : responses_) {
+    if (!r.answer.empty() && !is_ok(r.answer)) out.push_back(r.reason);
   }
   return out;
+}
+
+std::vector<std::string> SerialHost::messages() const {
+  std::vector<std::string> out;
+  for (size_t i = kBannerLines; i < received_.size(); ++i) {
+    const std::string& l = received_[i];
+    if (!is_ok(l) && l.rfind("error:", 0) != 0) out.push_back(l);
+  }
+  return out;
+}
+
+// The answer a received line completes, with the refusal's reason: grbl's
+// `ok` or `error:N` (its reason the `[MSG:...]` line just before it),
+// Marlin's `ok` (a refusal when an `Error:` line came just before it, or
+// before the `Resend:` line before it: the answer is then that line).
+bool SerialHost::answer_of(std::string& answer, std::string& reason) const {
+  const std::string& line = received_.back();
+  const size_t n = received_.size();
+  const auto before = [&](size_t k) -> const std::string& { return received_[n - 1 - k]; };
+  reason.clear();
+  if (marlin_) {
+    if (!is_ok(line)) return false;
+    answer = line;
+    size_t k = 1;
+    if (n > kBannerLines + 1 && before(1).rfind("Resend:", 0) == 0) k = 2;
+    if (n > kBannerLines + k && before(k).rfind("Error:", 0) == 0) {
+      answer = before(k);
+      reason = answer.substr(6);
+    }
+    return true;
+  }
+  if (!is_ok(line) && line.rfind("error:", 0) != 0) return false;
+  answer = line;
+  const std::string& msg = n > kBannerLines + 1 ? before(1) : line;
+  if (!is_ok(line) && msg.rfind("[MSG:", 0) == 0 && msg.back() == ']') reason = msg.substr(5, msg.size() - 6);
+  return true;
 }
 
 void SerialHost::on_output(avr_irq_t*, uint32_t value, void* self) {
@@ -115,28 +150,32 @@ void SerialHost::on_output(avr_irq_t*, uint32_t value, void* self) {
 }
 
 void SerialHost::on_line(const std::string& line) {
-  const bool first = received_.empty();
   received_.push_back(line);
   received_cycles_.push_back(avr_->cycle);
-  const bool answer = is_ok(line) || line.rfind("error", 0) == 0;
+  const bool banner = received_.size() <= kBannerLines;
+  if (received_.size() == 1) marlin_ = line == "start";
+  std::string answer, reason;
+  const bool answered = !banner && answer_of(answer, reason);
   if (relay_) {
-    if (answer && next_answer_ < responses_.size()) {
-      responses_[next_answer_].answer = line;
+    if (answered && next_answer_ < responses_.size()) {
+      responses_[next_answer_].answer = answer;
+      responses_[next_answer_].reason = reason;
       responses_[next_answer_++].answer_cycle = avr_->cycle;
     }
     return;
   }
-  if (first) {
-    send_next();  // the banner: the firmware is ready
+  if (banner) {
+    if (received_.size() == kBannerLines) send_next();  // the whole banner: the firmware is ready
     return;
   }
-  if (!answer || !awaiting_answer_) return;
+  if (!answered || !awaiting_answer_) return;
   awaiting_answer_ = false;
   if (wait_sent_) {
     finished_ = true;
     return;
   }
-  responses_.back().answer = line;
+  responses_.back().answer = answer;
+  responses_.back().reason = reason;
   responses_.back().answer_cycle = avr_->cycle;
   send_next();
 }
@@ -150,7 +189,7 @@ void SerialHost::send_next() {
     const std::string line = script_.front();
     script_.pop_front();
     ++lines_sent_;
-    responses_.push_back({line, "", avr_->cycle, 0});
+    responses_.push_back({line, "", "", avr_->cycle, 0});
     outgoing_ = line + "\n";
   }
   outgoing_pos_ = 0;

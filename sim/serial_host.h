@@ -1,13 +1,17 @@
 // The host at the other end of the firmware's UART: it sends a script of
 // command lines with the protocol's flow control (one line in flight; the next
-// line leaves after "ok" or "error: ..." came back; "ok <report>", Marlin's
-// M105 answer, is an ok too), paced at the real byte
+// line leaves after the line's answer came back), paced at the real byte
 // time of the baud rate, and records everything the firmware prints.
+// The answers in both styles (docs/protocol.md): grbl's `ok` or `error:N`
+// (the reason: the `[MSG:...]` line before it), Marlin's `ok` (`ok <report>`,
+// M105's, too), which answers a refused line when an `Error:<reason>` line
+// (and `Resend:`) came right before it: the answer is then the Error line.
 //
-// The first line the firmware prints is its banner; nothing is sent before
-// it. After the last script line the host sends WAIT (M400 on an image
-// without the direct commands; not counted as a script line), so finished()
-// becomes true only once all motion has ended. A line
+// The first line the firmware prints is its banner (`Grbl 1.1h ...` or
+// Marlin's `start`, then a line naming the firmware); nothing is sent before
+// both of its lines are in. After the last script line the host sends WAIT
+// (M400 to an image without the direct commands; not counted as a script
+// line), so finished() becomes true only once all motion has ended. A line
 // added once finished() is true is sent at once, and a new WAIT after it.
 //
 // Relay mode (avrmotion-sim --pty, pty_run.h): the lines come from a client
@@ -28,7 +32,8 @@ namespace sim {
 
 struct Response {
   std::string line;     // the script line
-  std::string answer;   // "ok" (or "ok <report>") or "error: ..."
+  std::string answer;   // "ok" (or "ok <report>"), "error:N" (grbl) or "Error:<reason>" (Marlin)
+  std::string reason;   // a refusal's text, in either style
   uint64_t sent_cycle;  // first byte handed to the UART
   uint64_t answer_cycle;
 };
@@ -62,7 +67,7 @@ class SerialHost {
   // half-sent one; lines still waiting for an answer never get one. Returns
   // the number of bytes dropped.
   size_t on_reset();
-  bool banner_seen() const { return !received_.empty(); }
+  bool banner_seen() const { return received_.size() >= kBannerLines; }  // both of its lines
 
   const std::string& banner() const;
   const std::vector<std::string>& received() const { return received_; }
@@ -74,14 +79,19 @@ class SerialHost {
   size_t lines_ok() const;
   static bool is_ok(const std::string& answer);  // "ok" or "ok <report>"
   std::vector<std::string> errors() const;
-  // Lines that are neither the banner nor an answer (pos, warnings).
+  std::vector<std::string> reasons() const;  // each error's reason, in order
+  // Lines that are neither the banner's two nor an answer's final line
+  // (pos, info lines, a refusal's reason line).
   std::vector<std::string> messages() const;
+  bool marlin() const { return marlin_; }
+  static constexpr size_t kBannerLines = 2;
 
  private:
   static void on_output(avr_irq_t* irq, uint32_t value, void* self);
   static uint64_t on_byte_slot(avr_t* avr, uint64_t when, void* self);
   static uint64_t on_raw_slot(avr_t* avr, uint64_t when, void* self);
   void on_line(const std::string& line);
+  bool answer_of(std::string& answer, std::string& reason) const;
   void relay_byte(char c, uint64_t cycle);
   void send_next();
 
@@ -99,6 +109,7 @@ class SerialHost {
   bool finished_ = false;
   size_t lines_sent_ = 0;
   bool relay_ = false;
+  bool marlin_ = false;  // the banner was Marlin's
   std::string relay_line_;        // the client's line being handed over
   uint64_t relay_line_cycle_ = 0;  // its first byte's cycle
   size_t next_answer_ = 0;        // the first relayed line without an answer

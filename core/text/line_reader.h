@@ -45,7 +45,8 @@ class LineReader {
     return Line::none;
   }
 
-  const char* text() const { return buf_; }
+  // The protocol may cut the line in place (a checksum) before parsing it.
+  char* text() { return buf_; }
   // No line begun: every byte fed so far ended in a line end.
   bool between_lines() const { return len_ == 0 && !overflow_; }
   static constexpr uint8_t capacity() { return Capacity; }

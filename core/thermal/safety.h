@@ -36,7 +36,9 @@
 //
 //   temp_ok(): the TEMP_OK output, |T - target| <= band with a good reading,
 //   target > 0 and (the member) no fault latched. Default band 3 C (Marlin's
-//   TEMP_HYSTERESIS "close enough").
+//   TEMP_HYSTERESIS "close enough"). Given `was_ok` (the output as it is), an
+//   output already high stays high out to band + kTempOkHysteresis (1 C):
+//   the reading's noise at the band's edge does not make it chatter.
 //
 //   ATmega32 (avr-g++ 5.4 -Os): check() about 140 cycles, 39 bytes of RAM,
 //   about 1.2 kB of flash with the 140-byte text table in PROGMEM.
@@ -84,10 +86,11 @@ struct SafetyLimits {
 };
 
 constexpr int16_t kTempOkBand = centi_c(3);
+constexpr int16_t kTempOkHysteresis = centi_c(1);
 
-constexpr bool temp_ok(TempReading t, int16_t target, int16_t band = kTempOkBand) {
-  return t.ok() && target > 0 && int32_t(t.centi) - target <= band &&
-         int32_t(target) - t.centi <= band;
+constexpr bool temp_ok(TempReading t, int16_t target, int16_t band = kTempOkBand, bool was_ok = false) {
+  return t.ok() && target > 0 && int32_t(t.centi) - target <= band + (was_ok ? kTempOkHysteresis : 0) &&
+         int32_t(target) - t.centi <= band + (was_ok ? kTempOkHysteresis : 0);
 }
 
 class HeaterSafety {
@@ -101,8 +104,8 @@ class HeaterSafety {
 
   HeaterFault fault() const { return fault_; }
   bool faulted() const { return fault_ != HeaterFault::none; }
-  bool temp_ok(TempReading t, int16_t target, int16_t band = kTempOkBand) const {
-    return !faulted() && am::temp_ok(t, target, band);
+  bool temp_ok(TempReading t, int16_t target, bool was_ok = false, int16_t band = kTempOkBand) const {
+    return !faulted() && am::temp_ok(t, target, band, was_ok);
   }
   const SafetyLimits& limits() const { return limits_; }
 

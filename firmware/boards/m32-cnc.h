@@ -1,5 +1,7 @@
-// Board: ATmega32 printer/CNC controller (seed-002), as a mill: G2/G3 and
-// positions counted mid-move, no heater (the hot end's flash goes to them).
+// Board: ATmega32 printer/CNC controller (seed-002), as a grbl-style mill
+// for cncjs and UGS: G2/G3, positions counted mid-move, the realtime bytes
+// (? ! ~ Ctrl-X, docs/realtime.md); no heater and no direct controls (their
+// flash goes to the rest; the m32-direct image has them).
 // Wiring: firmware/boards/common/m32_wiring.h.
 // avrmotion-board: mcu=atmega32 f_cpu=16000000 app=cnc
 #pragma once
@@ -11,8 +13,8 @@ using namespace m32_wiring;
 
 using Claims = hal::ClaimSet<kStepClock, kClock, hal::claim::uart, Axes::Claims::all>;
 
-constexpr bool kRealtime = true;
-constexpr bool kCommands = false;  // a grbl-style mill: G-code only (their flash goes to the realtime commands)  // grbl's ? ! ~ Ctrl-X (firmware/apps/cnc/realtime.h)
+constexpr bool kRealtime = true;   // firmware/apps/cnc/realtime.h
+constexpr bool kCommands = false;  // G-code only
 constexpr bool kGcode = true;  // the cnc program speaks G-code (docs/gcode.md)
 constexpr bool kArcs = true;   // G2/G3 as chords (docs/interpolation.md): about 7.5 KB of flash
 // The look-ahead ring (firmware/engine/path.h), 62 B a block: four blocks

@@ -24,6 +24,11 @@ struct Heater {
 using Claims = hal::ClaimSet<kStepClock, kClock, hal::claim::uart, Axes::Claims::all, Heater::claims>;
 
 constexpr bool kGcode = true;  // the cnc program speaks G-code (docs/gcode.md)
+constexpr Protocol kProtocol = Protocol::marlin;  // printer hosts: printcore, OctoPrint (docs/protocol.md)
+// A printer host sends G-code only: the flash of the direct controls (MOVE,
+// POS, WAIT, RELEASE, MODE) holds Marlin's protocol instead; the m32-cnc
+// image of this board keeps them.
+constexpr bool kCommands = false;
 // The flash the heater needs: G2/G3 (7.5 KB) and the odometer (1 KB) are
 // in the m32-cnc image of this board instead; M114 counts where the queued
 // motion ends.

@@ -4,10 +4,9 @@
 // Two bipolar steppers through the shield's 74HC595 (D12 latch, D4 clock,
 // D7 output enable active low, D8 data) and two L293D whose enables are D11/D3
 // (stepper 1, axis X) and D5/D6 (stepper 2, axis Y). Travel is counted for a
-// 200-step motor on an 8 mm-lead screw: 25 full steps per mm. Axis U is a
-// 28BYJ-48 on a ULN2003 board at A0..A3 (PC0..PC3), counted as 2048 full steps
-// per output turn of a 500 mm circumference pulley: 4096 steps per metre.
-// Axis Z is an external step/dir driver on the shield's servo header: STEP on
+// 200-step motor on an 8 mm-lead screw: 25 full steps per mm. (A ULN2003
+// axis, as on the m16, would cost 1 KB of flash this image needs for the
+// grbl protocol.) Axis Z is an external step/dir driver on the shield's servo header: STEP on
 // D9 (OC1A, timed by the step timer's hardware), DIR on D10, ENABLE on A4
 // (active low); 400 steps per mm (16 microsteps, 8 mm lead).
 #pragma once
@@ -18,7 +17,6 @@
 #include "../axes/axis_set.h"
 #include "../axes/shield_stepper.h"
 #include "../axes/timer_step_axis.h"
-#include "../axes/unipolar_axis.h"
 
 namespace board {
 
@@ -32,7 +30,6 @@ constexpr uint16_t kTimer0Prescaler = 8;
 using Axes = AxisSet<ShieldStepper<'X', 1, Latch, hal::Pwm8<2, 'A'>, hal::Pwm8<2, 'B'>, 25000>,
                      ShieldStepper<'Y', 2, Latch, hal::Pwm8<0, 'A', kTimer0Prescaler>,
                                    hal::Pwm8<0, 'B', kTimer0Prescaler>, 25000>,
-                     UnipolarAxis<'U', Pin<'C', 0>, Pin<'C', 1>, Pin<'C', 2>, Pin<'C', 3>, 4096>,
                      TimerStepAxis<'Z', Pin<'B', 2>, Pin<'C', 4>, true, 400000>>;
 
 // Hardware claims (hal/avr/claims.h, checked when the image compiles): Timer1

@@ -77,13 +77,16 @@ void convert() {
   reading_ = am::thermistor_temperature<am::AdcOversampler<2>::kBits>(kTable, sampler.value(), FlashFetch());
 }
 
+bool temp_ok;  // the TEMP_OK output (safety.h: its hysteresis)
+
 void sample_period() {
   convert();
   const uint8_t wanted = tuning_ ? control.tune.update(reading_) : control.pid.update(reading_, target_);
   duty_ = safety.check(now_ms, reading_, target(), wanted);
   now_ms += kPeriodMs;
   Hw::Pwm::set(duty_);
-  Hw::TempOk::set(safety.temp_ok(reading_, target_));
+  temp_ok = safety.temp_ok(reading_, target_, temp_ok);
+  Hw::TempOk::set(temp_ok);
   if (safety.faulted() && !halted) halt();
 }
 

@@ -72,15 +72,17 @@ bool wait_turn(const am::GcodeHeaterCommand& c) {
     write_gains(PSTR("PID Autotune finished: "), gains());
     failed = nullptr;
   }
-  if (failed) error(failed);
+  if (failed) error(reply::code::heater, failed);
   else ok();
   return true;
 }
 
 bool refuse_halted() {
-  hal::uart::write_P(PSTR("error: heater halted ("));
+  reply::error_begin();
+  hal::uart::write_P(PSTR("heater halted ("));
   hal::uart::write_P(fault_text());
-  hal::uart::write_P(PSTR("), reset to clear\n"));
+  hal::uart::write_P(PSTR("), reset to clear"));
+  reply::error_end(reply::code::heater);
   return true;
 }
 

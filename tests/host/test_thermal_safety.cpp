@@ -221,6 +221,18 @@ TEST(ThermalSafety, EveryFaultHasAnIdAndAShortDistinctMessage) {
             "Error:Thermistor open");
 }
 
+TEST(ThermalSafety, TempOkHoldsThroughTheHysteresis) {
+  // Rising into the band: on at 197.00, not at 196.99.
+  EXPECT_FALSE(am::temp_ok(c(196.99), k200, am::kTempOkBand, false));
+  EXPECT_TRUE(am::temp_ok(c(197.00), k200, am::kTempOkBand, false));
+  // Once on: still on out to 4 C off, off beyond, both sides.
+  for (double t : {196.0, 196.5, 203.5, 204.0}) EXPECT_TRUE(am::temp_ok(c(t), k200, am::kTempOkBand, true)) << t;
+  for (double t : {195.99, 204.01}) EXPECT_FALSE(am::temp_ok(c(t), k200, am::kTempOkBand, true)) << t;
+  HeaterSafety s;
+  EXPECT_TRUE(s.temp_ok(c(196.5), k200, true));
+  EXPECT_FALSE(s.temp_ok(c(196.5), k200, false));
+}
+
 TEST(ThermalSafety, TempOkBandIsInclusive) {
   EXPECT_TRUE(am::temp_ok(c(203.00), k200));
   EXPECT_TRUE(am::temp_ok(c(197.00), k200));

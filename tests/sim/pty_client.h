@@ -14,6 +14,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <string>
 #include <vector>
@@ -142,20 +143,71 @@ class Client {
       else if (n == 0 || errno != EAGAIN) return "<closed>";
     }
   }
-  // Sends `l` and reads up to its answer ("ok" / "error: ..."): one line in
-  // flight. `info` gets the lines before the answer.
+  // Sends `l` and reads up to its answer: one line in flight. `info` gets
+  // the lines before the answer. The answer is grbl's `ok` / `error:N`, or
+  // Marlin's `ok`, which answers a refusal when an `Error:` line (and a
+  // `Resend:`) came just before it: the answer is then that Error line.
   std::string command(const std::string& l, std::vector<std::string>* info = nullptr) {
     send(l + "\n");
+    return answer(info);
+  }
+  std::string answer(std::vector<std::string>* info = nullptr) {
+    std::string refusal;
     for (;;) {
       const std::string a = line();
-      if (a == "ok" || a.rfind("error", 0) == 0 || a[0] == '<') return a;
+      if (a == "ok" || a.rfind("ok ", 0) == 0) return refusal.empty() ? a : refusal;
+      if (a.rfind("error:", 0) == 0 || a[0] == '<') return a;
+      if (a.rfind("Resend:", 0) != 0) refusal = a.rfind("Error:", 0) == 0 ? a : "";
       if (info) info->push_back(a);
     }
+  }
+  // The two banner lines: grbl's `Grbl 1.1h ['$' for help]` or Marlin's
+  // `start`, then the firmware's name, board and clock (`[MSG:...]`,
+  // `echo:...`).
+  std::string banner() {
+    const std::string first = line();
+    return first + "\n" + line();
   }
 
  private:
   int fd_;
   std::string in_;
 };
+
+// grbl's streaming by character counting (as its stream.py does): as many
+// lines in flight as their bytes, line ends included, fit `limit`; every
+// answer (`ok`, `error:N`) frees the oldest line's bytes. Info lines
+// (`[MSG:...]`) are no answers.
+struct Streamed {
+  size_t answered = 0, errors = 0, most_lines = 0, most_bytes = 0;
+  std::string failure;  // a timeout or the port closing
+};
+inline Streamed stream_counting(Client& c, const std::vector<std::string>& lines, size_t limit) {
+  Streamed r;
+  std::vector<size_t> in_flight;  // bytes of each unanswered line, oldest first
+  size_t bytes = 0, next = 0;
+  while (r.answered < lines.size()) {
+    while (next < lines.size() && bytes + lines[next].size() + 1 <= limit) {
+      c.send(lines[next] + "\n");
+      in_flight.push_back(lines[next].size() + 1);
+      bytes += in_flight.back();
+      ++next;
+    }
+    r.most_lines = std::max(r.most_lines, in_flight.size());
+    r.most_bytes = std::max(r.most_bytes, bytes);
+    const std::string a = c.line();
+    if (a[0] == '<') {
+      r.failure = a;
+      return r;
+    }
+    const bool error = a.rfind("error:", 0) == 0;
+    if (a != "ok" && !error) continue;
+    r.errors += error;
+    bytes -= in_flight.front();
+    in_flight.erase(in_flight.begin());
+    ++r.answered;
+  }
+  return r;
+}
 
 }  // namespace ptytest

@@ -172,25 +172,34 @@ TEST(Arcs, AnArcFasterThanItsChordsArriveSlowsDownWithoutStarving) {
 }
 
 TEST(Arcs, IllFormedArcsAreRefusedAndChangeNothing) {
-  // Each refusal answered once, nothing moves, the two reports agree; the
-  // printer's image (m32) has no arcs at all.
-  const std::vector<std::pair<std::string, std::string>> bad = {
-      {"G2 X3 Y2 I5 J0", "error: arc end point not on the circle"},
-      {"G3 X3 Y2", "error: arc needs R or the plane's I/J/K"},
-      {"G2 X1 Y2 R3", "error: R arc cannot end where it starts"},
-      {"G2 X1 Y2 I0 J0", "error: arc radius is zero"},
+  // Each refusal answered once (the reason, then grbl's number), nothing
+  // moves, the two reports agree; the printer's image (m32) has no arcs at
+  // all.
+  struct Bad {
+    std::string line, reason, answer;
+  };
+  const std::vector<Bad> bad = {
+      {"G2 X3 Y2 I5 J0", "arc end point not on the circle", "error:33"},
+      {"G3 X3 Y2", "arc needs R or the plane's I/J/K", "error:35"},
+      {"G2 X1 Y2 R3", "R arc cannot end where it starts", "error:33"},
+      {"G2 X1 Y2 I0 J0", "arc radius is zero", "error:34"},
   };
   std::vector<std::string> lines = {"G21 G90", "G1 X1 Y2 F600", "WAIT", "M114"};
-  for (const auto& b : bad) lines.push_back(b.first);
+  for (const Bad& b : bad) lines.push_back(b.line);
   lines.push_back("M114");
   auto m = simtest::run("m32-cnc", lines, 20);
   const std::vector<sim::Response>& r = m->serial().responses();
   ASSERT_EQ(r.size(), lines.size());
-  for (size_t i = 0; i < bad.size(); ++i) EXPECT_EQ(r[4 + i].answer, bad[i].second) << bad[i].first;
-  const std::vector<std::string> msgs = m->serial().messages();
+  for (size_t i = 0; i < bad.size(); ++i) {
+    EXPECT_EQ(r[4 + i].answer, bad[i].answer) << bad[i].line;
+    EXPECT_EQ(r[4 + i].reason, bad[i].reason) << bad[i].line;
+  }
+  std::vector<std::string> msgs;  // the reports (each refusal's reason is a line too)
+  for (const std::string& l : m->serial().messages())
+    if (l.rfind("X:", 0) == 0) msgs.push_back(l);
   ASSERT_EQ(msgs.size(), 2u);
   EXPECT_EQ(msgs[0], msgs[1]);
   EXPECT_EQ(m->axis('X')->steps(), 1000.0);
   auto printer = simtest::run("m32", {"G2 X3 Y2 I1 J0 F600"}, 5);
-  EXPECT_EQ(printer->serial().responses().at(0).answer, "error: G2/G3 arcs are not in this board's image");
+  EXPECT_EQ(printer->serial().responses().at(0).answer, "Error:G2/G3 arcs are not in this board's image");
 }

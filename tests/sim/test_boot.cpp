@@ -1,5 +1,4 @@
 // Every board image boots in its safe state, greets the host and answers.
-#include <cstdio>
 #include <string>
 
 #include "sim_fixture.h"
@@ -15,22 +14,38 @@ struct Image {
 
 class Boot : public ::testing::TestWithParam<Image> {};
 
-// Whether the image takes the direct commands (MOVE, POS, ...) beside G-code.
-bool has_commands(const char* image) {
-  return sim::Machine(simtest::image(image)).board().program & am::kProgramCommands;
-}
+// The printer image speaks Marlin (firmware/boards/m32.h); every other
+// image speaks grbl.
+bool marlin(const Image& img) { return std::string(img.name) == "m32"; }
+// Whether the image takes the direct controls (MOVE, POS, ...) beside
+// G-code: the printer and the m32-cnc do not.
+bool has_commands(const sim::Machine& m) { return m.board().program & am::kProgramCommands; }
 
 TEST_P(Boot, BannerNamesBoardAndClockThenAnswers) {
   const Image& img = GetParam();
-  const bool commands = has_commands(img.name);
-  auto m = simtest::run(img.name, {commands ? "POS" : "M114", commands ? "NOPE" : "G5"}, 1);
+  auto m = simtest::run(img.name, {"POS", "NOPE"}, 1);
   const std::string expected = std::string("avrmotion ") + AVRMOTION_VERSION_STRING + " board=" + img.board +
                                " mcu=" + img.mcu + " f_cpu=" + std::to_string(img.f_cpu);
-  EXPECT_EQ(m->serial().banner(), expected);
+  const auto& got = m->serial().received();
+  ASSERT_GE(got.size(), 2u);
   EXPECT_EQ(m->board().f_cpu, img.f_cpu);
   ASSERT_EQ(m->serial().responses().size(), 2u);
-  EXPECT_EQ(m->serial().responses()[0].answer, "ok");
-  EXPECT_EQ(m->serial().responses()[1].answer, commands ? "error: unknown command" : "error: unsupported G or M code");
+  const auto& r = m->serial().responses();
+  if (marlin(img)) {
+    EXPECT_EQ(m->serial().banner(), "start");
+    EXPECT_EQ(got[1], "echo:" + expected);
+    // Marlin answers a command it does not have with an echo and ok.
+    EXPECT_EQ(r[0].answer, "ok");
+    EXPECT_EQ(r[1].answer, "ok");
+    EXPECT_EQ(m->serial().messages(),
+              (std::vector<std::string>{"echo:Unknown command: \"POS\"", "echo:Unknown command: \"NOPE\""}));
+  } else {
+    EXPECT_EQ(m->serial().banner(), "Grbl 1.1h ['$' for help]");
+    EXPECT_EQ(got[1], "[MSG:" + expected + "]");
+    EXPECT_EQ(r[0].answer, has_commands(*m) ? "ok" : "error:20");
+    EXPECT_EQ(r[1].answer, "error:20");
+    EXPECT_EQ(r[1].reason, "unknown command");
+  }
   // No axis moved and nothing was decoded as a step.
   for (const sim::AxisTrace& a : m->axes()) EXPECT_TRUE(a.step_cycles.empty()) << a.name;
 }
@@ -39,18 +54,17 @@ TEST_P(Boot, EveryAxisMovesExactlyAsCommanded) {
   const Image& img = GetParam();
   std::vector<std::string> script;
   sim::Machine probe(simtest::image(img.name));
-  const bool commands = probe.board().program & am::kProgramCommands;
+  // Without the direct controls: the same steps as relative G-code moves
+  // (1000 steps/mm).
+  const bool commands = has_commands(probe);
   if (!commands) script.push_back("G91");
   for (const sim::AxisTrace& a : probe.axes()) {
-    if (commands) {
+    if (!commands) {
+      script.push_back(std::string("G1 ") + a.name + "0.037 F120");
+      script.push_back(std::string("G1 ") + a.name + "-0.012 F120");
+    } else {
       script.push_back(std::string("MOVE ") + a.name + "37 F2000 A20000");
       script.push_back(std::string("MOVE ") + a.name + "-12 F2000 A20000");
-    } else {  // in mm: steps over steps per mm
-      char line[64];
-      std::snprintf(line, sizeof line, "G1 %c%.4f F120", a.name, 37 / a.steps_per_mm);
-      script.push_back(line);
-      std::snprintf(line, sizeof line, "G1 %c%.4f", a.name, -12 / a.steps_per_mm);
-      script.push_back(line);
     }
   }
   auto m = simtest::run(img.name, script, 5);
@@ -66,6 +80,7 @@ INSTANTIATE_TEST_SUITE_P(Images, Boot,
                          ::testing::Values(Image{"uno", "uno", "atmega328p", 16000000},
                                            Image{"m32", "m32", "atmega32", 16000000},
                                            Image{"m32-cnc", "m32-cnc", "atmega32", 16000000},
+                                           Image{"m32-direct", "m32-direct", "atmega32", 16000000},
                                            Image{"m16", "m16", "atmega16", 16000000},
                                            Image{"m16-8mhz", "m16", "atmega16", 8000000}),
                          [](const ::testing::TestParamInfo<Image>& info) {

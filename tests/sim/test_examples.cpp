@@ -23,22 +23,23 @@ std::vector<std::string> job(const std::string& file) {
 
 TEST(Examples, UnoDemo) {
   const auto lines = job("demo.txt");
-  ASSERT_EQ(lines.size(), 9u);
+  ASSERT_EQ(lines.size(), 8u);
   auto m = simtest::run("uno", lines, 30);
-  EXPECT_EQ(m->serial().errors(), std::vector<std::string>{"error: no such axis on this board"});
-  const std::vector<std::string> messages = {"warning: F clamped to 160000", "pos X:450 Y:-250 U:2048 Z:0"};
+  EXPECT_EQ(m->serial().errors(), std::vector<std::string>{"error:20"});
+  EXPECT_EQ(m->serial().reasons(), std::vector<std::string>{"no such axis on this board"});
+  const std::vector<std::string> messages = {"[MSG:F clamped to 160000]", "[MSG:no such axis on this board]",
+                                             "pos X:450 Y:-250 Z:0"};
   EXPECT_EQ(m->serial().messages(), messages);
   EXPECT_DOUBLE_EQ(m->axis('X')->steps(), 450);  // 500 full steps, then 800 sixteenths back
   EXPECT_DOUBLE_EQ(m->axis('Y')->steps(), -250);
-  EXPECT_DOUBLE_EQ(m->axis('U')->steps(), 2048);
   EXPECT_DOUBLE_EQ(m->axis('Z')->steps(), 0);
   EXPECT_EQ(m->axis('Z')->step_cycles.size(), 80000u);
 }
 
 TEST(Examples, M32Demo) {
-  auto m = simtest::run("m32", job("m32-demo.txt"), 30);
+  auto m = simtest::run("m32-direct", job("m32-direct-demo.txt"), 30);
   EXPECT_TRUE(m->serial().errors().empty());
-  const std::vector<std::string> messages = {"warning: F clamped to 40000", "pos X:0 Y:-15000 Z:500 E:3000"};
+  const std::vector<std::string> messages = {"[MSG:F clamped to 40000]", "pos X:0 Y:-15000 Z:500 E:3000"};
   EXPECT_EQ(m->serial().messages(), messages);
   EXPECT_DOUBLE_EQ(m->axis('Y')->steps(), -15000);
 }
@@ -54,7 +55,7 @@ TEST(Examples, UnoPlotter) {
   auto m = simtest::run("uno", job("uno-plotter.gcode"), 60);
   EXPECT_TRUE(m->serial().errors().empty());
   ASSERT_EQ(m->serial().messages().size(), 1u);
-  EXPECT_EQ(m->serial().messages()[0], "X:0.0000 Y:0.0000 U:0.0000 Z:2.0000 Count X:0 Y:0 U:0 Z:800");
+  EXPECT_EQ(m->serial().messages()[0], "X:0.0000 Y:0.0000 Z:2.0000 Count X:0 Y:0 Z:800");
   // The square's four sides and the diamond's four: 50 full steps each
   // axis per side, the diagonals 125 on both axes at once.
   EXPECT_EQ(m->axis('X')->step_cycles.size(), 250u + 500u + 125u + 4 * 125u + 375u);

@@ -72,7 +72,7 @@ TEST(Gcode, ASlicerStyleProgramEndsExactlyOnItsTargets) {
   y -= 25400;
   lines.push_back("G1 Z1.3 F600");
   z = 13000;
-  lines.push_back("WAIT");  // M114's counts are where the motors are now: after the motion
+  lines.push_back("M400");  // M114's counts are where the motors are now: after the motion
   lines.push_back("M114");
   e_steps += steps_of(e);
 
@@ -91,35 +91,72 @@ TEST(Gcode, ASlicerStyleProgramEndsExactlyOnItsTargets) {
   EXPECT_NE(msgs.back().find(count.str()), std::string::npos) << msgs.back();
 }
 
+// The M114 reports among the lines received (refusals print a reason line).
+std::vector<std::string> reports(const sim::SerialHost& host) {
+  std::vector<std::string> out;
+  for (const std::string& l : host.messages())
+    if (l.rfind("X:", 0) == 0) out.push_back(l);
+  return out;
+}
+
 TEST(Gcode, RefusedLinesAreAnsweredOnceAndChangeNothing) {
   // One line per kind of refusal, between two position reports: each gets
-  // its error, nothing moves, and the reports agree.
-  const std::vector<std::pair<std::string, std::string>> bad = {
-      {"G1 X1 Q3", "error: unsupported word letter"},
-      {"G1 X1 X2", "error: word given twice"},
-      {"G0 G1 X1", "error: two codes of one modal group"},
-      {"G1 X1.2.3", "error: bad number"},
-      {"G7 X1", "error: unsupported G or M code"},
-      {"G1 X1 F0", "error: feed rate must be above 0"},
-      {"G1 A5", "error: no such axis on this board"},
-      {"G4", "error: G4 needs P (seconds)"},
-      {"G2 X3 Y2 I1 J0", "error: G2/G3 arcs are not in this board's image"},
-      {"G1 X1 P2 F100", "error: word not used by any code on the line"},
-      {"G1 X300000", "error: number out of range"},
-      {"G1 X1 (open", "error: comment not closed"},
+  // its error, nothing moves, and the reports agree. In both styles: the
+  // printer's Marlin (`Error:<reason>`, then ok; an unknown code is an
+  // `echo:` and ok, as Marlin answers it) and the m32-cnc's grbl (the reason
+  // as `[MSG:...]`, then `error:<grbl's number>`).
+  struct Bad {
+    std::string line, reason;
+    int grbl;
   };
-  std::vector<std::string> lines = {"G21", "G90", "G1 X1 Y2 F600", "WAIT", "M114"};
-  for (const auto& b : bad) lines.push_back(b.first);
-  lines.push_back("M114");
-  auto m = simtest::run("m32", lines, 20);
-  const std::vector<sim::Response>& r = m->serial().responses();
-  ASSERT_EQ(r.size(), lines.size());
-  for (size_t i = 0; i < bad.size(); ++i) EXPECT_EQ(r[5 + i].answer, bad[i].second) << bad[i].first;
-  const std::vector<std::string> msgs = m->serial().messages();
-  ASSERT_EQ(msgs.size(), 2u);
-  EXPECT_EQ(msgs[0], msgs[1]);
-  EXPECT_EQ(m->axis('X')->steps(), 1000.0);
-  EXPECT_EQ(m->axis('Y')->steps(), 2000.0);
+  const std::vector<Bad> bad = {
+      {"G1 X1 Q3", "unsupported word letter", 20},
+      {"G1 X1 X2", "word given twice", 25},
+      {"G0 G1 X1", "two codes of one modal group", 21},
+      {"G1 X1.2.3", "bad number", 2},
+      {"G7 X1", "unsupported G or M code", 20},
+      {"G1 X1 F0", "feed rate must be above 0", 22},
+      {"G1 A5", "no such axis on this board", 20},
+      {"G4", "G4 needs P (seconds)", 28},
+      {"G2 X3 Y2 I1 J0", "G2/G3 arcs are not in this board's image", 20},  // the printer only
+      {"G1 X1 P2 F100", "word not used by any code on the line", 36},
+      {"G1 X300000", "number out of range", 100},
+      {"G1 X1 (open", "comment not closed", 101},
+  };
+  for (const char* image : {"m32", "m32-cnc"}) {
+    SCOPED_TRACE(image);
+    const bool marlin = std::string(image) == "m32";
+    std::vector<std::string> lines = {"G21", "G90", "G1 X1 Y2 F600", "M400", "M114"};
+    std::vector<Bad> cases;
+    for (const Bad& b : bad)
+      if (marlin || b.line[1] != '2') cases.push_back(b);  // the m32-cnc has arcs
+    for (const Bad& b : cases) lines.push_back(b.line);
+    lines.push_back("M114");
+    auto m = simtest::run(image, lines, 20);
+    const std::vector<sim::Response>& r = m->serial().responses();
+    ASSERT_EQ(r.size(), lines.size());
+    std::vector<std::string> unknown;
+    for (size_t i = 0; i < cases.size(); ++i) {
+      const Bad& b = cases[i];
+      if (marlin && b.line == "G7 X1") {
+        EXPECT_EQ(r[5 + i].answer, "ok");
+        unknown.push_back("echo:Unknown command: \"" + b.line + "\"");
+      } else {
+        EXPECT_EQ(r[5 + i].answer, marlin ? "Error:" + b.reason : "error:" + std::to_string(b.grbl)) << b.line;
+        EXPECT_EQ(r[5 + i].reason, b.reason) << b.line;
+      }
+    }
+    if (marlin) {
+      size_t echoes = 0;
+      for (const std::string& l : m->serial().messages()) echoes += l == unknown[0];
+      EXPECT_EQ(echoes, 1u);
+    }
+    const std::vector<std::string> msgs = reports(m->serial());
+    ASSERT_EQ(msgs.size(), 2u);
+    EXPECT_EQ(msgs[0], msgs[1]);
+    EXPECT_EQ(m->axis('X')->steps(), 1000.0);
+    EXPECT_EQ(m->axis('Y')->steps(), 2000.0);
+  }
 }
 
 TEST(Gcode, TheTimerPulsedAxisMovesAloneAndTheRefusalChangesNothing) {
@@ -128,13 +165,15 @@ TEST(Gcode, TheTimerPulsedAxisMovesAloneAndTheRefusalChangesNothing) {
                         20);
   const std::vector<sim::Response>& r = m->serial().responses();
   ASSERT_EQ(r.size(), 6u);
-  EXPECT_EQ(r[1].answer, "error: the hardware-timed axis moves alone");
-  EXPECT_EQ(r[4].answer, "error: G2/G3 arcs are not in this board's image");
+  EXPECT_EQ(r[1].answer, "error:109");
+  EXPECT_EQ(r[1].reason, "the hardware-timed axis moves alone");
+  EXPECT_EQ(r[4].answer, "error:20");
+  EXPECT_EQ(r[4].reason, "G2/G3 arcs are not in this board's image");
   // The shield axes: 25 steps/mm; Z: 400 steps/mm.
   EXPECT_EQ(m->axis('X')->steps(), 100.0);
   EXPECT_EQ(m->axis('Y')->steps(), 50.0);
   EXPECT_EQ(m->axis('Z')->steps(), 200.0);
-  const std::vector<std::string> msgs = m->serial().messages();
+  const std::vector<std::string> msgs = reports(m->serial());
   ASSERT_EQ(msgs.size(), 2u);
   EXPECT_NE(msgs[0].find("X:4.0000 Y:2.0000"), std::string::npos) << msgs[0];
 }

@@ -141,7 +141,13 @@ TEST(Heater, HeatsTo200HoldsItAndRecoversFromAFanStep) {
   for (const sim::PinEdge& e : temp_ok) (e.level ? rises : falls).push_back(double(e.cycle) / kHz);
   ASSERT_EQ(rises.size(), 1u);
   EXPECT_TRUE(falls.empty() || falls.back() < rises.front());
-  EXPECT_NEAR(rises.front(), h.crossed_s(197, true), 0.5);
+  // It rises when the thermistor is at 197 C within the reading's accuracy
+  // (docs/heater.md: a 12-bit count is 0.12 C there, the table within 0.22 C).
+  double at_rise = 0;
+  for (const sim::ThermalSample& s : h.plant->log())
+    if (s.t_s <= rises.front()) at_rise = s.sensor_c;
+  EXPECT_NEAR(at_rise, 197, 0.5);
+  std::printf("TEMP_OK rises at %.3f s, the thermistor at %.2f C\n", rises.front(), at_rise);
 
   // The moves ran whole while the heater held.
   EXPECT_EQ(h.m->starvations(), 0);
@@ -154,7 +160,7 @@ TEST(Heater, HeatsTo200HoldsItAndRecoversFromAFanStep) {
 TEST(Heater, CommandsAnswerInMarlinsFormatAndRefuseBadInput) {
   HotEnd h;
   for (const char* l : {"M105", "M155 S1", "M104 S300", "M104 S-5", "M301 P1001", "M301 P30.5 I2 D80", "M301",
-                        "M104 S150", "G4 P3.2", "WAIT", "M155 S0", "M105", "M104 S0"})
+                        "M104 S150", "G4 P3.2", "M400", "M155 S0", "M105", "M104 S0"})
     h.send(l);
   h.run_until(6);
   ASSERT_TRUE(h.m->serial().finished());
@@ -162,9 +168,9 @@ TEST(Heater, CommandsAnswerInMarlinsFormatAndRefuseBadInput) {
   // At power-up: the first reading is taken before the banner.
   const std::string first = h.m->serial().responses().at(0).answer;
   EXPECT_TRUE(std::regex_match(first, std::regex(R"(ok T:2[45]\.\d\d /0\.00 @:0)"))) << first;
-  EXPECT_EQ(ans("M104 S300"), "error: temperature must be 0 .. 260 C");
-  EXPECT_EQ(ans("M104 S-5"), "error: temperature must be 0 .. 260 C");
-  EXPECT_EQ(ans("M301 P1001"), "error: gains must be P, I 0 .. 1000, D 0 .. 10000");
+  EXPECT_EQ(ans("M104 S300"), "Error:temperature must be 0 .. 260 C");
+  EXPECT_EQ(ans("M104 S-5"), "Error:temperature must be 0 .. 260 C");
+  EXPECT_EQ(ans("M301 P1001"), "Error:gains must be P, I 0 .. 1000, D 0 .. 10000");
   // The refused lines changed nothing: the target was still 0 (M105 above),
   // the gains Marlin's until M301 set them.
   std::vector<std::string> echo;
@@ -198,7 +204,7 @@ TEST(Heater, M109IsAbortedByAnyLineFromTheHost) {
   h.run_until(4);
   const sim::Response* wait = h.answer_of("M109 S200");
   ASSERT_NE(wait, nullptr);
-  EXPECT_EQ(wait->answer, "error: wait ended by the host");
+  EXPECT_EQ(wait->answer, "Error:wait ended by the host");
   EXPECT_GT(wait->answer_cycle / kHz, sent);
   EXPECT_LT(wait->answer_cycle / kHz, sent + 0.01);
   EXPECT_DOUBLE_EQ(h.last_high_s(), h.now_s());  // still heating: the target stays
@@ -224,7 +230,14 @@ TEST_P(SensorFault, CutsTheHeaterWithinOneSecondAndHalts) {
   h.run_until(5.0);
   std::string line;
   const double error_at = h.line_time("Error:", &line);
-  EXPECT_EQ(line, std::string("Error:") + c.message + ", heater halted until reset");
+  // An open thermistor reads as colder than the table, which latches after
+  // 500 ms, or first as a reading below MINTEMP (5 C), which latches at
+  // once, as in Marlin (where MINTEMP is the open-sensor check): which one
+  // comes first depends on where the break falls in a set of samples.
+  const std::string message =
+      c.fault == sim::ThermalFault::sensor_open && line.find("MINTEMP") != std::string::npos ? "MINTEMP triggered"
+                                                                                            : c.message;
+  EXPECT_EQ(line, "Error:" + message + ", heater halted until reset");
   EXPECT_GT(error_at, 3.0);
   EXPECT_LE(error_at - 3.0, 1.0);
   const double off = h.last_high_s();
@@ -239,7 +252,7 @@ TEST_P(SensorFault, CutsTheHeaterWithinOneSecondAndHalts) {
   const auto& resp = h.m->serial().responses();
   ASSERT_GE(resp.size(), 3u);
   EXPECT_EQ(resp[0].answer, "ok");  // the M104 before the fault
-  EXPECT_EQ(resp[1].answer, std::string("error: heater halted (") + c.message + "), reset to clear");
+  EXPECT_EQ(resp[1].answer, "Error:heater halted (" + message + "), reset to clear");
   EXPECT_TRUE(std::regex_match(resp[2].answer, std::regex(R"(ok T:\d+\.\d\d /0\.00 @:0)"))) << resp[2].answer;
   EXPECT_LT(h.last_high_s(), 3.0 + 1.0);
 }
@@ -419,7 +432,10 @@ TEST(Heater, TheSimCommandTakesAPlantScenario) {
                           "' --thermal-initial 100 --thermal-fan 0.5@0.5 --thermal-fault open@1.5 2>/dev/null";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
   const std::string report = simtest::slurp(json);
-  EXPECT_NE(report.find("\"messages\": [\"Error:Thermistor open, heater halted until reset\"]"), std::string::npos)
+  // The host's closing M400 waits out the 3 s dwell: Marlin's keep-alive
+  // once, 2 s after it arrived.
+  EXPECT_NE(report.find("\"messages\": [\"Error:Thermistor open, heater halted until reset\", \"busy: processing\"]"),
+            std::string::npos)
       << report;
   std::smatch t;
   ASSERT_TRUE(std::regex_search(report, t,
@@ -437,7 +453,10 @@ TEST(Heater, TheSimCommandTakesAPlantScenario) {
 // A board without a heater refuses the heater codes, clearly.
 TEST(Heater, TheUnoHasNoHeater) {
   auto m = simtest::run("uno", {"M104 S200", "M105", "M303", "M500"}, 2);
-  for (const sim::Response& r : m->serial().responses()) EXPECT_EQ(r.answer, "error: this board has no heater");
+  for (const sim::Response& r : m->serial().responses()) {
+    EXPECT_EQ(r.answer, "error:20");  // grbl's "unsupported command"
+    EXPECT_EQ(r.reason, "this board has no heater");
+  }
   EXPECT_EQ(m->serial().responses().size(), 4u);
 }
 

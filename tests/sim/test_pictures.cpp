@@ -475,19 +475,20 @@ std::vector<double> panel_y_ticks(const Picture& pic, char axis, const char* kin
 }
 
 TEST(Pictures, UnoRunHasAPanelPerAxisAndQuantityEachOnItsOwnScale) {
-  auto m = simtest::run("uno", {"MOVE X100 F400 A800", "MOVE Y-50 F300 A600", "MOVE U200 F500 A1000",
-                                "MOVE Z4000 F40000 A300000", "MOVE E10"});
+  auto m = simtest::run("uno", {"MOVE X100 F400 A800", "MOVE Y-50 F300 A600", "MOVE Z4000 F40000 A300000",
+                                "MOVE E10"});
   const Picture pic = draw(*m, "uno-pictures.svg");
   check_picture(pic, *m);
-  // Own scales: Y's 2 mm and U's 48.8 mm are each drawn over their panel.
-  const std::vector<double> y = panel_y_ticks(pic, 'Y', "position"), u = panel_y_ticks(pic, 'U', "position");
+  // Own scales: Y's -2 mm and X's 4 mm are each drawn over their panel.
+  const std::vector<double> y = panel_y_ticks(pic, 'Y', "position"), x = panel_y_ticks(pic, 'X', "position");
   ASSERT_FALSE(y.empty());
-  ASSERT_FALSE(u.empty());
+  ASSERT_FALSE(x.empty());
   EXPECT_LE(y.front(), -2);
   EXPECT_GE(y.front(), -2.5);
   EXPECT_EQ(y.back(), 0);
-  EXPECT_GE(u.back(), 200 / 4.096);
-  EXPECT_LE(u.back(), 60);
+  EXPECT_EQ(x.front(), 0);
+  EXPECT_GE(x.back(), 100 / 25.0);
+  EXPECT_LE(x.back(), 5);
   // Z cruises at 40000 steps/s = 100 mm/s and accelerates at 1000 mm/s^2.
   const std::vector<double> zv = panel_y_ticks(pic, 'Z', "velocity"), za = panel_y_ticks(pic, 'Z', "acceleration");
   ASSERT_FALSE(zv.empty());
@@ -500,8 +501,7 @@ TEST(Pictures, UnoRunHasAPanelPerAxisAndQuantityEachOnItsOwnScale) {
 }
 
 TEST(Pictures, FourAxesOfTheM32KeepFourColours) {
-  auto m = simtest::run("m32", {"MOVE X200 F20000 A200000", "MOVE Y-150 F20000 A200000", "MOVE Z50 F2000 A20000",
-                                "MOVE E300 F5000 A50000"});
+  auto m = simtest::run("m32", {"G91", "G1 X0.2 F1200", "G1 Y-0.15 F1200", "G1 Z0.05 F120", "G1 E0.3 F300"});
   ASSERT_EQ(m->axes().size(), 4u);
   check_picture(draw(*m, "m32-pictures.svg"), *m);
 }
@@ -546,7 +546,7 @@ sim::AxisTrace step_axis(char name, double steps_per_mm) {
   return a;
 }
 
-sim::Response ok_line(const std::string& line, uint64_t sent) { return {line, "ok", sent, sent + 50}; }
+sim::Response ok_line(const std::string& line, uint64_t sent) { return {line, "ok", "", sent, sent + 50}; }
 
 // The path's points as (response index, kind, number of points) runs.
 struct Stretch {
@@ -1070,7 +1070,7 @@ TEST(Pictures, AHotEndRowShowsItsTemperaturesSetpointAndDuty) {
   // thermistor climbs; the duty is full on while it is far below.
   sim::Machine m(simtest::image("m32"));
   sim::ThermalPlant plant(m);
-  for (const char* l : {"G4 P1", "WAIT", "M104 S200", "G4 P20"}) m.serial().add_line(l);
+  for (const char* l : {"G4 P1", "M400", "M104 S200", "G4 P20"}) m.serial().add_line(l);
   ASSERT_EQ(m.run_script(uint64_t(30) * m.f_cpu()), sim::RunEnd::done);
   const std::string path = temp_path("hot-end.svg");
   sim::write_run_plot(path, m, sim::PlotLabel{"hot end", sim::RunEnd::done, &plant});

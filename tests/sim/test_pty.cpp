@@ -8,6 +8,7 @@
 #include <termios.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <deque>
@@ -73,14 +74,14 @@ std::string command_shown(Client& c, const std::string& l) {
 
 TEST(Pty, GcodeAndMovesOneLineInFlightThenAReopenGetsAFreshBanner) {
   const std::string dir = temp_path("pty-"), link = dir + "port", report = dir + "report.json", svg = dir + "run.svg";
-  SimProcess sim({"--board", "m32", "--pty", "--link", link, "--speed", "max", "--linger", "2", "--max-seconds", "30",
-                  "--report", report, "--plot", svg});
+  SimProcess sim({"--board", "m32-direct", "--pty", "--link", link, "--speed", "max", "--linger", "2", "--max-seconds",
+                  "30", "--report", report, "--plot", svg});
   const std::string path = sim.pty_path();
   ASSERT_EQ(path.rfind("/dev/pts/", 0), 0u) << sim.stderr_text();
   char target[256] = {};
   ASSERT_GT(readlink(link.c_str(), target, sizeof target - 1), 0);
   EXPECT_EQ(path, target);
-  const double x_mm = steps_per_mm("m32", 'X'), y_mm = steps_per_mm("m32", 'Y');
+  const double x_mm = steps_per_mm("m32-direct", 'X'), y_mm = steps_per_mm("m32-direct", 'Y');
   ASSERT_GT(x_mm, 0);
 
   // Session 1: the board was held in reset until this open, so the banner is
@@ -88,15 +89,16 @@ TEST(Pty, GcodeAndMovesOneLineInFlightThenAReopenGetsAFreshBanner) {
   std::printf("session 1 (%s)\n", link.c_str());
   Client a(link);
   ASSERT_TRUE(a.is_open());
-  const std::string banner = a.line();
-  shown("<", banner);
-  EXPECT_EQ(banner.rfind("avrmotion ", 0), 0u) << banner;
-  EXPECT_NE(banner.find("board=m32"), std::string::npos) << banner;
+  const std::string banner = a.banner();
+  shown("<", banner.substr(0, banner.find('\n')));
+  shown("<", banner.substr(banner.find('\n') + 1));
+  EXPECT_EQ(banner.rfind("Grbl 1.1h ['$' for help]\n[MSG:avrmotion ", 0), 0u) << banner;
+  EXPECT_NE(banner.find("board=m32-direct"), std::string::npos) << banner;
   EXPECT_EQ(command_shown(a, "G21"), "ok");
   EXPECT_EQ(command_shown(a, "G90"), "ok");
   EXPECT_EQ(command_shown(a, "G1 X10 Y5 F1200"), "ok");
   EXPECT_EQ(command_shown(a, "MOVE X400 Y-200 F8000"), "ok");
-  EXPECT_EQ(command_shown(a, "BOGUS"), "error: unknown command");
+  EXPECT_EQ(command_shown(a, "BOGUS"), "error:20");
   std::vector<std::string> info;
   EXPECT_EQ(a.command("POS", &info), "ok");
   const long x1 = long(10 * x_mm) + 400, y1 = long(5 * y_mm) - 200;
@@ -110,8 +112,9 @@ TEST(Pty, GcodeAndMovesOneLineInFlightThenAReopenGetsAFreshBanner) {
   std::printf("session 2 (closed and opened again)\n");
   Client b(link);
   ASSERT_TRUE(b.is_open());
-  const std::string banner2 = b.line();
-  shown("<", banner2);
+  const std::string banner2 = b.banner();
+  shown("<", banner2.substr(0, banner2.find('\n')));
+  shown("<", banner2.substr(banner2.find('\n') + 1));
   EXPECT_EQ(banner2, banner);
   info.clear();
   EXPECT_EQ(b.command("POS", &info), "ok");
@@ -136,9 +139,9 @@ TEST(Pty, GcodeAndMovesOneLineInFlightThenAReopenGetsAFreshBanner) {
   EXPECT_EQ(report_number(json, "Y", "steps"), double(y1 + 1000)) << json;
   EXPECT_EQ(report_number(json, "pty", "sessions"), 2);
   EXPECT_GT(report_number(json, "pty", "bytes_discarded"), 0);  // "ok", "pos ...", "ok" of the last lines
-  EXPECT_EQ(report_number(json, "pty", "min_byte_interval_cycles"), double(byte_cycles("m32")));
+  EXPECT_EQ(report_number(json, "pty", "min_byte_interval_cycles"), double(byte_cycles("m32-direct")));
   EXPECT_EQ(report_number(json, "", "lines_sent"), 11);
-  EXPECT_EQ(report_string(json, "errors"), "[\"error: unknown command\"]");
+  EXPECT_EQ(report_string(json, "errors"), "[\"error:20\"]");
   EXPECT_EQ(access(link.c_str(), F_OK), -1) << "the link outlived the run";
   xmlcheck::Parser picture(slurp(svg));  // the picture, as for a file run
   EXPECT_TRUE(picture.parse()) << picture.error();
@@ -182,8 +185,8 @@ TEST(Pty, ASignalEndsTheRunWithItsReport) {
   SimProcess sim({"--board", "m32", "--pty", "--link", link, "--max-seconds", "30", "--report", report});
   ASSERT_FALSE(sim.pty_path().empty()) << sim.stderr_text();
   Client c(link);
-  ASSERT_EQ(c.line().rfind("avrmotion ", 0), 0u);
-  EXPECT_EQ(c.command("MOVE X100 F1000"), "ok");
+  ASSERT_EQ(c.banner().rfind("start\necho:avrmotion ", 0), 0u);  // the printer: Marlin's protocol
+  EXPECT_EQ(c.command("G1 X0.1 F600"), "ok");
   sim.signal(SIGTERM);
   ASSERT_EQ(sim.wait_exit(), 0) << sim.stderr_text();
   const std::string json = slurp(report);
@@ -200,7 +203,7 @@ TEST(Pty, ABudgetEndsASessionThatGoesOnTooLong) {
   const std::string path = sim.pty_path();
   ASSERT_FALSE(path.empty()) << sim.stderr_text();
   Client c(path);
-  ASSERT_EQ(c.line().rfind("avrmotion ", 0), 0u);
+  ASSERT_EQ(c.banner().rfind("start\necho:avrmotion ", 0), 0u);
   EXPECT_EQ(c.line(), "<closed>");  // nothing more comes until the simulator goes
   ASSERT_EQ(sim.wait_exit(), 3) << sim.stderr_text();
   const std::string json = slurp(report);
@@ -211,56 +214,55 @@ TEST(Pty, ABudgetEndsASessionThatGoesOnTooLong) {
   std::remove(report.c_str());
 }
 
-// grbl's streaming protocol: keep as many lines in flight as the sum of
-// their lengths fits the firmware's receive ring (hal/avr/uart.cpp kRxSize:
-// 64 bytes today; grbl senders count against 128, which is issue 9's
-// protocol part). The ring must never overflow: no line is refused.
+// grbl's streaming protocol on the m32-cnc: a character-counting client
+// (ptytest::stream_counting) keeps as many lines in flight as the receive
+// ring holds, the size `$I` reports (`[OPT:,<blocks>,<ring>]`: 64 bytes
+// today, hal/avr/uart.cpp; grbl senders count against 128, which the ring
+// must grow to). The ring never overflows: every line is answered once, no
+// line is refused, and the file ends exactly on its target.
 TEST(Pty, ACharacterCountingClientFillsTheReceiveRingAndLosesNothing) {
-  constexpr size_t kRx = 64;
   const std::string report = temp_path("pty-count.json");
-  SimProcess sim({"--board", "m32", "--pty", "--speed", "max", "--linger", "0", "--max-seconds", "30", "--report", report});
+  SimProcess sim({"--board", "m32-direct", "--pty", "--speed", "max", "--linger", "0", "--max-seconds", "60", "--report",
+                  report});
   const std::string path = sim.pty_path();
   ASSERT_FALSE(path.empty()) << sim.stderr_text();
   Client c(path);
-  ASSERT_EQ(c.line().rfind("avrmotion ", 0), 0u);
-  std::vector<std::string> lines{"G21", "G90"};
-  for (int i = 1; i <= 60; ++i)
-    lines.push_back("G1 X0." + std::to_string(i % 7) + " Y0." + std::to_string(i % 5 * 2) + " F2400");
-  lines.push_back("G1 X1.2 Y0.7 F2400");
-  std::deque<size_t> in_flight;
-  size_t bytes = 0, next = 0, answered = 0, most_lines = 0, most_bytes = 0, errors = 0;
-  while (answered < lines.size()) {
-    while (next < lines.size() && bytes + lines[next].size() + 1 <= kRx) {
-      c.send(lines[next] + "\n");
-      in_flight.push_back(lines[next].size() + 1);
-      bytes += in_flight.back();
-      ++next;
-    }
-    most_lines = std::max(most_lines, in_flight.size());
-    most_bytes = std::max(most_bytes, bytes);
-    const std::string a = c.line();
-    ASSERT_NE(a[0], '<') << a;
-    if (a != "ok" && a.rfind("error", 0) != 0) continue;  // warnings, not answers
-    errors += a != "ok";
-    bytes -= in_flight.front();
-    in_flight.pop_front();
-    ++answered;
-  }
-  std::printf("character counting: %zu lines, up to %zu lines / %zu bytes in flight, %zu errors\n", lines.size(),
-              most_lines, most_bytes, errors);
-  EXPECT_EQ(errors, 0u);
-  EXPECT_GE(most_lines, 3u);  // it did stream
+  ASSERT_EQ(c.banner().rfind("Grbl 1.1h", 0), 0u);
   std::vector<std::string> info;
+  ASSERT_EQ(c.command("$I", &info), "ok");
+  ASSERT_EQ(info.size(), 2u);
+  std::smatch opt;
+  ASSERT_TRUE(std::regex_match(info[1], opt, std::regex(R"(\[OPT:,(\d+),(\d+)\])"))) << info[1];
+  const size_t ring = std::stoul(opt[2]);
+  EXPECT_EQ(ring, 64u);
+  // A milling-style file: 400 short feeds with three decimals around a
+  // square, then the end point.
+  std::vector<std::string> lines{"G21", "G90"};
+  for (int i = 1; i <= 400; ++i) {
+    char l[64];
+    std::snprintf(l, sizeof l, "G1 X%.3f Y%.3f F3000", (i * 137 % 2000) / 1000.0, (i * 71 % 1500) / 1000.0);
+    lines.push_back(l);
+  }
+  lines.push_back("G1 X1.234 Y0.567 F3000");
+  const ptytest::Streamed r = ptytest::stream_counting(c, lines, ring);
+  ASSERT_TRUE(r.failure.empty()) << r.failure;
+  std::printf("character counting against %zu bytes: %zu lines, up to %zu lines / %zu bytes in flight, %zu errors\n",
+              ring, lines.size(), r.most_lines, r.most_bytes, r.errors);
+  EXPECT_EQ(r.answered, lines.size());
+  EXPECT_EQ(r.errors, 0u);
+  EXPECT_GE(r.most_lines, 3u);  // it did stream
+  EXPECT_LE(r.most_bytes, ring);
+  info.clear();
   EXPECT_EQ(c.command("POS", &info), "ok");
-  const long x = long(1.2 * steps_per_mm("m32", 'X') + 0.5), y = long(0.7 * steps_per_mm("m32", 'Y') + 0.5);
+  const long x = std::lround(1.234 * steps_per_mm("m32-direct", 'X')), y = std::lround(0.567 * steps_per_mm("m32-direct", 'Y'));
   ASSERT_EQ(info.size(), 1u);
-  EXPECT_EQ(info[0], "pos X:" + std::to_string(x) + " Y:" + std::to_string(y) + " Z:0 E:0");
+  EXPECT_EQ(info[0].rfind("pos X:" + std::to_string(x) + " Y:" + std::to_string(y) + " ", 0), 0u) << info[0];
   c.close_port();
   ASSERT_EQ(sim.wait_exit(), 0) << sim.stderr_text();
   const std::string json = slurp(report);
   EXPECT_EQ(report_number(json, "X", "steps"), double(x));
   EXPECT_EQ(report_number(json, "Y", "steps"), double(y));
-  EXPECT_EQ(report_number(json, "", "lines_ok"), double(lines.size() + 1));
+  EXPECT_EQ(report_number(json, "", "lines_ok"), double(lines.size() + 2));  // with $I and POS
   EXPECT_EQ(report_string(json, "errors"), "[]");
   std::remove(report.c_str());
 }
@@ -275,7 +277,7 @@ TEST(Pty, AFloodIsPacedAtTheByteRateAndSimavrLosesNoByte) {
   const std::string path = sim.pty_path();
   ASSERT_FALSE(path.empty()) << sim.stderr_text();
   Client c(path);
-  ASSERT_EQ(c.line().rfind("avrmotion ", 0), 0u);
+  ASSERT_EQ(c.banner().rfind("start\necho:avrmotion ", 0), 0u);
   std::string flood;
   for (int i = 0; i < 200; ++i) flood += "G21\n";
   c.send(flood);
@@ -304,7 +306,7 @@ TEST(Pty, SimulatedTimeFollowsWallClockTimesTheSpeed) {
     const std::string path = sim.pty_path();
     ASSERT_FALSE(path.empty()) << sim.stderr_text();
     Client c(path);
-    ASSERT_EQ(c.line().rfind("avrmotion ", 0), 0u);
+    ASSERT_EQ(c.banner().rfind("Grbl 1.1h ['$' for help]\n[MSG:avrmotion ", 0), 0u);
     EXPECT_EQ(c.command("G4 P1"), "ok");
     EXPECT_EQ(c.command("WAIT"), "ok");
     c.close_port();

@@ -338,19 +338,30 @@ TEST(ShieldModes, ModeWaitsForMotionToEnd) {
 }
 
 TEST(ShieldModes, ModeErrors) {
-  Session r({"MODE X8", "MODE E1", "MODE U16", "MODE U2", "MODE X64"});
-  const auto& got = r.m->serial().received();
-  const std::vector<std::string> expected_tail = {
-      "error: mode must be 0, 1, 2, 16, 32 or 64", "error: no such axis on this board",
-      "error: mode not available on this axis", "ok", "ok"};
-  // (The host ends every script with a WAIT: one more "ok".)
-  ASSERT_GE(got.size(), 6u);
-  EXPECT_EQ(std::vector<std::string>(got.end() - 6, got.end() - 1), expected_tail);
-  // A step/dir axis has no coils to sequence.
-  auto m32 = simtest::run("m32", {"MODE X1"});
-  const auto& m32_got = m32->serial().received();
-  ASSERT_GE(m32_got.size(), 2u);
-  EXPECT_EQ(m32_got[m32_got.size() - 2], "error: axis has no excitation modes");
+  Session r({"MODE X8", "MODE E1", "MODE X2", "MODE X64"});
+  const auto& got = r.m->serial().responses();
+  ASSERT_EQ(got.size(), 4u);
+  const std::vector<std::pair<std::string, std::string>> expected = {
+      {"error:104", "mode must be 0, 1, 2, 16, 32 or 64"},
+      {"error:20", "no such axis on this board"},
+      {"ok", ""},
+      {"ok", ""}};
+  for (size_t i = 0; i < got.size(); ++i) {
+    EXPECT_EQ(got[i].answer, expected[i].first) << got[i].line;
+    EXPECT_EQ(got[i].reason, expected[i].second) << got[i].line;
+  }
+  // A ULN2003 axis has wave, two-phase and half-step only (the m16's U).
+  auto m16 = simtest::run("m16", {"MODE U16", "MODE U2"});
+  ASSERT_EQ(m16->serial().responses().size(), 2u);
+  EXPECT_EQ(m16->serial().responses()[0].answer, "error:106");
+  EXPECT_EQ(m16->serial().responses()[0].reason, "mode not available on this axis");
+  EXPECT_EQ(m16->serial().responses()[1].answer, "ok");
+  // A step/dir axis has no coils to sequence (the m32's CNC image: the
+  // printer's has no MODE).
+  auto m32 = simtest::run("m32-direct", {"MODE X1"});
+  ASSERT_EQ(m32->serial().responses().size(), 1u);
+  EXPECT_EQ(m32->serial().responses()[0].answer, "error:105");
+  EXPECT_EQ(m32->serial().responses()[0].reason, "axis has no excitation modes");
 }
 
 TEST(ShieldModes, StepInterruptCyclesPerMode) {

@@ -61,7 +61,7 @@ uint64_t ps_per_cycle(const sim::Machine& m) { return 1000000000000ull / m.f_cpu
 
 TEST(Vcd, StepEdgesAndInterruptWindowsMatchTheReport) {
   const std::string path = temp_path("m32.vcd");
-  auto m = traced("m32", {"MOVE X2000 F20000 A200000", "MOVE Y-500 F5000 A50000"}, path);
+  auto m = traced("m32", {"G91", "G1 X2 F1200", "G1 Y-0.5 F300"}, path);
   const vcdread::Trace t = vcdread::read(path);
   ASSERT_EQ(t.error, "");
   EXPECT_EQ(t.redundant, 0u) << "only changes are written";
@@ -150,7 +150,7 @@ TEST(Vcd, HardwareTimedStepPinIsTracedEdgeForEdge) {
 
 TEST(Vcd, OnlyTheChosenSignals) {
   const std::string path = temp_path("m32-chosen.vcd");
-  traced("m32", {"MOVE X100 F20000 A200000"}, path, "X, isr7, PD3");
+  traced("m32", {"G1 X0.1 F1200"}, path, "X, isr7, PD3");
   const vcdread::Trace t = vcdread::read(path);
   ASSERT_EQ(t.error, "");
   std::vector<std::string> names;
@@ -211,7 +211,7 @@ void expect_matches_report(const std::string& line, const std::string& json) {
 
 TEST(Progress, TheLastLineSaysWhatTheReportSays) {
   sim::Machine m(simtest::image("uno"));
-  for (const char* l : {"MOVE X100 F400 A800", "MOVE E10", "MOVE U300 F500 A1000", "POS"}) m.serial().add_line(l);
+  for (const char* l : {"MOVE X100 F400 A800", "MOVE E10", "MOVE Y300 F500 A1000", "POS"}) m.serial().add_line(l);
   std::ostringstream progress;
   const sim::RunEnd end = sim::run_script_with_progress(m, uint64_t(30) * m.f_cpu(), &progress, 0);
   ASSERT_EQ(end, sim::RunEnd::done);
@@ -237,7 +237,7 @@ TEST(Progress, TheLastLineSaysWhatTheReportSays) {
 
 TEST(Progress, ATimedOutRunEndsWithItsOwnFigures) {
   sim::Machine m(simtest::image("uno"));
-  for (const char* l : {"MOVE U2048 F500 A1000", "MOVE U-2048 F500 A1000", "POS"}) m.serial().add_line(l);
+  for (const char* l : {"MOVE Y2048 F500 A1000", "MOVE Y-2048 F500 A1000", "POS"}) m.serial().add_line(l);
   std::ostringstream progress;
   const sim::RunEnd end = sim::run_script_with_progress(m, m.f_cpu() / 2, &progress, 60);
   ASSERT_EQ(end, sim::RunEnd::budget_spent);

@@ -35,25 +35,25 @@ TEST(Unipolar, HalfStepForwardFollowsTheUln2003Table) {
   // Coils off at power-up, A+ held when the move starts, then seed-003's
   // half-step table 0x01, 0x03, 0x02, 0x06, 0x04, 0x0C, 0x08, 0x09.
   const std::vector<uint8_t> expected = {0x00, 0x01, 0x03, 0x02, 0x06, 0x04, 0x0C, 0x08, 0x09, 0x01};
-  EXPECT_EQ(patterns("uno", {"MODE U2", "MOVE U8"}, 'C', 0), expected);
+  EXPECT_EQ(patterns("m16", {"MODE U2", "MOVE U8"}, 'C', 2), expected);
 }
 
 TEST(Unipolar, HalfStepReverseWalksTheTableBackwards) {
   const std::vector<uint8_t> expected = {0x00, 0x01, 0x09, 0x08, 0x0C, 0x04};
-  EXPECT_EQ(patterns("uno", {"MODE U2", "MOVE U-4"}, 'C', 0), expected);
+  EXPECT_EQ(patterns("m16", {"MODE U2", "MOVE U-4"}, 'C', 2), expected);
 }
 
-TEST(Unipolar, WaveAndTwoPhaseOnTheOtherBoards) {
-  // Uno on PC0..PC3: wave 0x01, 0x02, 0x04, 0x08.
+TEST(Unipolar, WaveAndTwoPhase) {
+  // Wave 0x01, 0x02, 0x04, 0x08.
   const std::vector<uint8_t> wave = {0x00, 0x01, 0x02, 0x04, 0x08, 0x01};
-  EXPECT_EQ(patterns("uno", {"MODE U0", "MOVE U4"}, 'C', 0), wave);
-  // ATmega16 on PC2..PC5, default two-phase: held B-A+ then 0x03, 0x06, 0x0C, 0x09.
+  EXPECT_EQ(patterns("m16", {"MODE U0", "MOVE U4"}, 'C', 2), wave);
+  // The default, two-phase: held B-A+ then 0x03, 0x06, 0x0C, 0x09.
   const std::vector<uint8_t> two_phase = {0x00, 0x09, 0x03, 0x06, 0x0C, 0x09};
   EXPECT_EQ(patterns("m16", {"MOVE U4"}, 'C', 2), two_phase);
 }
 
 TEST(Unipolar, ReleaseSwitchesEveryInputOff) {
-  const std::vector<uint8_t> got = patterns("uno", {"MOVE U3", "RELEASE"}, 'C', 0);
+  const std::vector<uint8_t> got = patterns("m16", {"MOVE U3", "RELEASE"}, 'C', 2);
   ASSERT_FALSE(got.empty());
   EXPECT_EQ(got.back(), 0x00);
 }

@@ -10,6 +10,7 @@
 #include "../../engine/path.h"
 #include "../../engine/planner.h"
 #include "../../services/heater_codes.h"
+#include "pending.h"
 #include "reply.h"
 
 namespace gcode {
@@ -66,7 +67,44 @@ constexpr bool reachable(am::GcodeError e) {
 const char* const kErrorText[] PROGMEM = {AM_GCODE_ERRORS(AM_ERROR_POINTER)};
 #undef AM_ERROR_POINTER
 
-am::GcodeAction<kAxes> action;  // the accepted line's, until execute() has run it
+// Each error's grbl number (reply.h, docs/protocol.md); the grbl images
+// alone link the table.
+constexpr uint8_t grbl_code(am::GcodeError e) {
+  using E = am::GcodeError;
+  namespace c = reply::code;
+  return e == E::bad_character ? c::expected_letter
+         : e == E::bad_comment ? c::comment_open
+         : e == E::unsupported_word || e == E::unsupported_code || e == E::no_such_axis || e == E::arcs_not_here ||
+                 e == E::no_heater
+             ? c::unsupported
+         : e == E::bad_number ? c::bad_number
+         : e == E::out_of_range ? c::out_of_range
+         : e == E::bad_line_number ? c::bad_line_number
+         : e == E::modal_group_conflict ? c::modal_group
+         : e == E::repeated_word ? c::repeated_word
+         : e == E::axis_conflict ? c::axis_conflict
+         : e == E::multiple_actions ? c::several_actions
+         : e == E::missing_axis_word ? c::no_axis_words
+         : e == E::missing_dwell_time ? c::value_missing
+         : e == E::missing_arc_words ? c::no_offsets
+         : e == E::arc_mixed_form ? c::arc_mixed
+         : e == E::unused_word ? c::unused_words
+         : e == E::bad_feed ? c::undefined_feed
+         : e == E::arc_zero_radius ? c::arc_radius
+         : e == E::arc_radius_mismatch || e == E::arc_radius_too_small || e == E::arc_full_circle_r ||
+                 e == E::target_out_of_range
+             ? c::invalid_target
+         : e == E::bad_mode ? c::bad_mode
+         : e == E::axis_has_no_modes ? c::no_modes
+         : e == E::mode_not_available ? c::mode_unavailable
+                                      : c::heater;  // the heater's, a Marlin board's
+}
+#define AM_GRBL_CODE(name, text) grbl_code(am::GcodeError::name),
+const uint8_t kGrblCode[] PROGMEM = {AM_GCODE_ERRORS(AM_GRBL_CODE)};
+#undef AM_GRBL_CODE
+
+// The accepted line's (pending.h), until execute() has run it.
+constexpr am::GcodeAction<kAxes>& action = pending::line.action;
 bool pending;
 int32_t coord_before[kAxes];  // program position before the pending line
 
@@ -123,9 +161,11 @@ void warn_if_held() {
   if (held < asked * 0.9999f) {
     char buf[14];
     am::format_fixed(buf, int32_t(held + 0.5f), 0);
-    hal::uart::write_P(PSTR("warning: F clamped to "));
+    reply::info_begin();
+    hal::uart::write_P(PSTR("F clamped to "));
     hal::uart::write(buf);
-    hal::uart::write_P(PSTR(" mm/min\n"));
+    hal::uart::write_P(PSTR(" mm/min"));
+    reply::info_end();
   }
 }
 
@@ -187,6 +227,11 @@ bool claims(const char* line) {
   return (*line >= '0' && *line <= '9') || *line == '-' || *line == '+' || *line == '.';
 }
 
+void refuse(am::GcodeError e) {
+  reply::error(reply::kMarlin ? 0 : pgm_read_byte(&kGrblCode[uint8_t(e)]),
+               reinterpret_cast<const char*>(pgm_read_word(&kErrorText[uint8_t(e)])));
+}
+
 bool accept(const char* line) {
   const am::GcodeState<kAxes> before = interpreter().state();
   for (uint8_t i = 0; i < kAxes; ++i) {
@@ -194,15 +239,22 @@ bool accept(const char* line) {
   }
   const am::GcodeError e = interpreter().run(line, action);
   if (e != am::GcodeError::none) {
-    reply::error(reinterpret_cast<const char*>(pgm_read_word(&kErrorText[uint8_t(e)])));
+    if (reply::kMarlin && e == am::GcodeError::unsupported_code)
+      reply::unknown_command(line);
+    else
+      refuse(e);
     return false;
   }
   // What the machine cannot run is refused now, with the state put back.
   const char* refusal = nullptr;
+  uint8_t refusal_code = reply::code::invalid_target;
   if (action.kind == am::GcodeActionKind::move) {
     switch (planner::check(move_to(action.target))) {
-      case planner::Refusal::position_range: refusal = PSTR("move would leave the position range"); break;
-      case planner::Refusal::timer_axis_not_alone: refusal = PSTR("the hardware-timed axis moves alone"); break;
+      case planner::Refusal::position_range: refusal = reply::kPositionRange; break;
+      case planner::Refusal::timer_axis_not_alone:
+        refusal = reply::kTimerAxisAlone;
+        refusal_code = reply::code::timer_axis_alone;
+        break;
       default: break;
     }
   }
@@ -212,16 +264,37 @@ bool accept(const char* line) {
     // The interpreter has checked radius and end point; what is left is the
     // circle within the position range and at most 65535 chords.
     if (!arc.start(from, action.target, action.plane_axis[0], action.plane_axis[1], action.centre,
-                   action.clockwise, kArcSag))
+                   action.clockwise, kArcSag)) {
       refusal = PSTR("arc beyond the position range or over 65535 chords");
+      refusal_code = reply::code::arc_too_big;
+    }
   }
   if (refusal) {
     interpreter().restore(before);
-    reply::error(refusal);
+    reply::error(refusal_code, refusal);
     return false;
   }
   pending = true;
   return true;
+}
+
+void write_state() {
+  const am::GcodeModal& m = interpreter().state().modal;
+  // The modes' digits patched into one template line.
+  static const char kTemplate[] PROGMEM = "[GC:G0 G17 G21 G90 G94 M82 F";
+  char text[sizeof kTemplate];
+  memcpy_P(text, kTemplate, sizeof text);
+  text[5] = char('0' + uint8_t(m.motion));
+  text[9] = char('7' + uint8_t(m.plane));
+  text[13] = m.inches ? '0' : '1';
+  text[17] = m.incremental ? '1' : '0';
+  text[25] = m.e_relative ? '3' : '2';
+  hal::uart::write(text);
+  // F in the line's units, whole, as grbl reports it (1/10000 mm/min; an
+  // inch is 25.4 mm).
+  const uint32_t per_unit = m.inches ? 254000 : 10000;
+  hal::uart::write_u32((uint32_t(m.feed) + per_unit / 2) / per_unit);
+  hal::uart::write_P(PSTR("]\n"));
 }
 
 bool execute() {

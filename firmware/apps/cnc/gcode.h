@@ -2,11 +2,11 @@
 // that starts with G, M or N and a number, or with a comment (after blanks),
 // is G-code; the direct controls
 // (MOVE, POS, WAIT, RELEASE, MODE: docs/protocol.md) stay beside it, with the
-// same answers.
+// same answers in the board's style (reply.h).
 //
 // Contract
 //   accept(line) parses and interprets one line (core/text/gcode_*.h). On an
-//   error it prints `error: <reason>` and nothing changes; otherwise the line's
+//   error it prints the refusal (reply.h) and nothing changes; otherwise the line's
 //   action waits, and execute() carries it out once the machine can take it
 //   (false: not yet, call again), printing its report and `ok`.
 //   Moves (G0, G1) become one coordinated block each (firmware/engine), from
@@ -16,7 +16,7 @@
 //   times out after the motion before it and to the tick. G2/G3 are refused
 //   (the arc interpolator is not on the engine yet).
 #pragma once
-#include <stdint.h>
+#include "../../../core/text/gcode_parser.h"
 
 namespace gcode {
 
@@ -27,5 +27,11 @@ bool accept(const char* line);
 bool execute();
 // The modal feed, whole mm/min (0 before the first F).
 uint32_t feed_mm_per_min();
+// Prints the refusal `e` (its text and grbl number): the direct controls
+// share the texts they have in common with G-code.
+void refuse(am::GcodeError e);
+// grbl's `$G`: `[GC:G1 G17 G21 G90 G94 M82 F1200]` (motion, plane,
+// units, distance, feed mode, E mode, feed in the line's units).
+void write_state();
 
 }  // namespace gcode

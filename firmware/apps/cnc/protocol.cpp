@@ -3,24 +3,38 @@
 #include <avr/pgmspace.h>
 
 #include "../../../core/text/command_parser.h"
+#include "../../../core/text/gcode_parser.h"
 #include "../../../core/text/line_reader.h"
+#include "../../../hal/avr/step_timer.h"
 #include "../../../hal/avr/uart.h"
 #include "../../board.h"
 #include "../../axes/axis_modes.h"
+#include "../../engine/clock.h"
 #include "../../engine/path.h"
 #include "../../engine/planner.h"
+#include "../../services/heater.h"
 #include "gcode.h"
+#include "pending.h"
 #include "reply.h"
+
+namespace pending {
+Line line;
+}  // namespace pending
 
 namespace protocol {
 namespace {
 
-using Reader = am::LineReader<80>;
+using reply::ok;
+using reply::error;
+using reply::kMarlin;
+namespace code = reply::code;
+
+using Reader = am::LineReader<kLineCapacity>;
 Reader reader;
-am::Command command;
-// What was accepted and waits for its turn: `command`, or the G-code line's
-// action (gcode.h).
-enum class Waiting : uint8_t { nothing, command, gcode };
+constexpr am::Command& command = pending::line.command;
+// What was accepted and waits for its turn: `command`, the G-code line's
+// action (gcode.h), or Marlin's M400 (motion to end).
+enum class Waiting : uint8_t { nothing, command, gcode, drain };
 Waiting waiting;
 // Set when received bytes were lost. The gap lies somewhere after the bytes
 // still in the receive ring, so every line completed from then on is refused
@@ -28,32 +42,53 @@ Waiting waiting;
 // run as a different, valid command.
 bool tainted;
 
-using reply::ok;
-using reply::error;
+// Marlin: the last line number accepted (M110 sets it), when the waiting
+// line is due its next `busy: processing`, and M112's halt.
+int32_t last_line;
+uint32_t busy_at;
+bool halted;
+constexpr uint32_t kBusyPeriodMs = 2000;  // Marlin's DEFAULT_KEEPALIVE_INTERVAL
 
-const char* parse_error_text(am::ParseError e) {
+void hold(Waiting w) {
+  waiting = w;
+  if (kMarlin) busy_at = clock::now() + clock::ms(kBusyPeriodMs);
+}
+
+using E = am::GcodeError;
+// A refusal whose text G-code has too: on a board with G-code its table's
+// (gcode::refuse), so the image holds the text once.
+__attribute__((always_inline)) inline void refuse(E shared, uint8_t grbl_code, const char* progmem_reason) {
+  if (board::kGcode) return gcode::refuse(shared);
+  error(grbl_code, progmem_reason);
+}
+
+void parse_error(am::ParseError e) {
   switch (e) {
-    case am::ParseError::unknown_command: return PSTR("unknown command");
-    case am::ParseError::bad_word: return PSTR("bad word (expected letter and number)");
-    case am::ParseError::bad_number: return PSTR("bad number");
-    case am::ParseError::out_of_range: return PSTR("number out of range");
-    case am::ParseError::duplicate_word: return PSTR("word given twice");
-    case am::ParseError::missing_axis: return PSTR("MOVE needs an axis word");
-    case am::ParseError::two_axes: return PSTR("MODE takes one axis");
-    case am::ParseError::unexpected_word: return PSTR("word not allowed here");
+    case am::ParseError::unknown_command:
+      if (kMarlin) return reply::unknown_command(reader.text());
+      return error(code::unsupported, PSTR("unknown command"));
+    case am::ParseError::bad_word: return refuse(E::bad_character, code::expected_letter, PSTR("expected a word letter"));
+    case am::ParseError::bad_number: return refuse(E::bad_number, code::bad_number, PSTR("bad number"));
+    case am::ParseError::out_of_range: return refuse(E::out_of_range, code::out_of_range, PSTR("number out of range"));
+    case am::ParseError::duplicate_word: return refuse(E::repeated_word, code::repeated_word, PSTR("word given twice"));
+    case am::ParseError::missing_axis:
+      return refuse(E::missing_axis_word, code::no_axis_words, PSTR("code needs an axis word"));
+    case am::ParseError::two_axes: return error(code::mode_one_axis, PSTR("MODE takes one axis"));
+    case am::ParseError::unexpected_word: return error(code::unused_words, PSTR("word not allowed here"));
     default:  // bad_mode (none and empty never come here)
-      return PSTR("mode must be 0, 1, 2, 16, 32 or 64");
+      return refuse(E::bad_mode, code::bad_mode, PSTR("mode must be 0, 1, 2, 16, 32 or 64"));
   }
 }
 
+void no_such_axis() { refuse(E::no_such_axis, code::unsupported, PSTR("no such axis on this board")); }
+
 void warn_clamped(char word, uint32_t value) {
-  hal::uart::write_P(PSTR("warning: "));
+  reply::info_begin();
   hal::uart::write(uint8_t(word));
   hal::uart::write_P(PSTR(" clamped to "));
   hal::uart::write_u32(value);
-  hal::uart::write('\n');
+  reply::info_end();
 }
-
 
 // The longest move: positions are kept in 1/64 full step for coil axes,
 // and 2^24 * 64 still fits the 32-bit counters.
@@ -67,11 +102,11 @@ bool execute(const am::Command& c) {
       for (uint8_t k = 0; k < c.axis_count; ++k) {
         const int8_t axis = board::Axes::index_of(c.axes[k]);
         if (axis < 0) {
-          error(PSTR("no such axis on this board"));
+          no_such_axis();
           return true;
         }
         if (c.axis_steps[k] > kMaxMoveSteps || c.axis_steps[k] < -kMaxMoveSteps) {
-          error(PSTR("move too long (max 16777216 steps)"));
+          error(code::move_too_long, PSTR("move too long (max 16777216 steps)"));
           return true;
         }
         move.steps[axis] = c.axis_steps[k];
@@ -80,19 +115,25 @@ bool execute(const am::Command& c) {
       switch (planner::check(move)) {
         case planner::Refusal::none: break;
         case planner::Refusal::nothing_to_do: ok(); return true;
-        case planner::Refusal::position_range: error(PSTR("move would leave the position range")); return true;
+        case planner::Refusal::position_range:
+          error(code::invalid_target, reply::kPositionRange);
+          return true;
         case planner::Refusal::timer_axis_not_alone:
-          error(PSTR("the hardware-timed axis moves alone"));
+          error(code::timer_axis_alone, reply::kTimerAxisAlone);
           return true;
       }
       planner::Ramp ramp{(c.given & am::kGivenRate) ? c.rate : board::kDefaultRate,
                          (c.given & am::kGivenAccel) ? c.accel : board::kDefaultAccel};
       switch (planner::check_ramp(ramp)) {
         case planner::RampError::none: break;
-        case planner::RampError::zero_speed: error(PSTR("speed must be above 0")); return true;
-        case planner::RampError::zero_accel: error(PSTR("acceleration must be above 0")); return true;
-        case planner::RampError::rate_above_tick: error(PSTR("speed above the timer clock")); return true;
-        case planner::RampError::accel_too_low: error(PSTR("acceleration too low for the timer")); return true;
+        case planner::RampError::zero_speed: error(code::zero_speed, PSTR("speed must be above 0")); return true;
+        case planner::RampError::zero_accel: error(code::zero_accel, PSTR("acceleration must be above 0")); return true;
+        case planner::RampError::rate_above_tick:
+          error(code::rate_above_tick, PSTR("speed above the timer clock"));
+          return true;
+        case planner::RampError::accel_too_low:
+          error(code::accel_too_low, PSTR("acceleration too low for the timer"));
+          return true;
       }
       const uint8_t clamped = planner::clamp(move, ramp);
       if (clamped & planner::kClampedRate) warn_clamped('F', ramp.rate);
@@ -127,54 +168,229 @@ bool execute(const am::Command& c) {
       if (!path::at_rest()) return false;
       switch (AxisModes<board::Axes>::set(c.axis, uint8_t(c.steps))) {
         case ModeResult::ok: ok(); break;
-        case ModeResult::no_axis: error(PSTR("no such axis on this board")); break;
-        case ModeResult::no_modes: error(PSTR("axis has no excitation modes")); break;
-        default: error(PSTR("mode not available on this axis")); break;
+        case ModeResult::no_axis: no_such_axis(); break;
+        case ModeResult::no_modes:
+          refuse(E::axis_has_no_modes, code::no_modes, PSTR("axis has no excitation modes"));
+          break;
+        default: refuse(E::mode_not_available, code::mode_unavailable, PSTR("mode not available on this axis")); break;
       }
       return true;
   }
   return true;
 }
 
-void on_line(Reader::Line line) {
+char* skip_blanks(char* p) {
+  while (*p == ' ' || *p == '\t') ++p;
+  return p;
+}
+
+// A whole number (optional '-', at most 9 digits) at p, which moves past it.
+bool read_int(char*& p, int32_t& value) {
+  const bool negative = *p == '-';
+  if (negative) ++p;
+  uint8_t digits = 0;
+  int32_t v = 0;
+  for (; *p >= '0' && *p <= '9'; ++p, ++digits) v = v * 10 + (*p - '0');
+  value = negative ? -v : v;
+  return digits > 0 && digits <= 9;
+}
+
+// M<code> as the first word at p (which then moves past it), or -1.
+int32_t m_code(char*& p) {
+  char* q = p;
+  int32_t m;
+  if ((*q | 0x20) != 'm' || !read_int(++q, m) || (*q != '\0' && *q != ' ' && *q != '\t')) return -1;
+  p = q;
+  return m;
+}
+
+// Marlin: the line is not run; the host sends it again from `Resend:`.
+void resend(const char* progmem_reason) {
+  hal::uart::write_P(PSTR("Error:"));
+  hal::uart::write_P(progmem_reason);
+  hal::uart::write_P(PSTR(", Last Line: "));
+  hal::uart::write_i32(last_line);
+  hal::uart::write_P(PSTR("\nResend: "));
+  hal::uart::write_i32(last_line + 1);
+  hal::uart::write('\n');
+  ok();
+}
+
+// Marlin's `N<n> <line>*<checksum>`: the line without number and checksum,
+// or nullptr when it was refused with a resend request. A line without N
+// runs unchecked (a host typing by hand); a line with N needs its checksum
+// (Marlin: "No Checksum with line number") and the next number in turn,
+// except M110, which sets it.
+char* numbered(char* line) {
+  char* p = skip_blanks(line);
+  const char* end;
+  const am::Checksum sum = am::split_checksum(line, end);
+  int32_t n;
+  if ((*p | 0x20) != 'n' || !(++p, read_int(p, n))) {
+    if (sum == am::Checksum::absent) return line;
+    resend(PSTR("No Line Number with checksum"));
+    return nullptr;
+  }
+  if (sum != am::Checksum::ok) {
+    resend(sum == am::Checksum::absent ? PSTR("No Checksum with line number") : PSTR("checksum mismatch"));
+    return nullptr;
+  }
+  *const_cast<char*>(end) = '\0';
+  p = skip_blanks(p);
+  char* code = p;
+  if (n != last_line + 1 && m_code(code) != 110) {
+    resend(PSTR("Line Number is not Last Line Number+1"));
+    return nullptr;
+  }
+  last_line = n;
+  return p;
+}
+
+void firmware_info() {
+  hal::uart::write_P(PSTR("FIRMWARE_NAME:avrmotion " AVRMOTION_VERSION
+                          " SOURCE_CODE_URL:local PROTOCOL_VERSION:1.0 MACHINE_TYPE:" AVRMOTION_BOARD_NAME
+                          " EXTRUDER_COUNT:1\nCap:AUTOREPORT_TEMP:1\nCap:EEPROM:0\nCap:EMERGENCY_PARSER:0\n"));
+}
+
+void refuse_halted() { error(code::heater, PSTR("Printer halted (M112), reset to restart")); }
+
+// M112: steps stop at once (the step timer with them), coils and drivers
+// off, the heater off; every line from then on is refused until reset.
+void halt() {
+  hal::step_timer::stop();
+  board::Axes::release();
+  if (board::kHeater) heater::set_target(0);
+  halted = true;
+  refuse_halted();
+}
+
+// Marlin's own codes, the protocol's: true when the line was one of them.
+bool marlin_code(char* p) {
+  switch (m_code(p)) {
+    case 110: {  // M110 [N<n>]: the next line is n + 1
+      p = skip_blanks(p);
+      int32_t n;
+      if ((*p | 0x20) == 'n' && (++p, read_int(p, n))) last_line = n;
+      ok();
+      return true;
+    }
+    case 112:
+      halt();
+      return true;
+    case 115:
+      firmware_info();
+      ok();
+      return true;
+    case 400:
+      hold(Waiting::drain);
+      return true;
+    default:
+      return false;
+  }
+}
+
+const char kNotHere[] PROGMEM = "not in this image";
+
+// grbl's '$' lines: `$` help, `$I` build info, `$G` the parser state; the
+// settings, homing and unlock commands (and realtime bytes sent as a line)
+// are refused with grbl's "not recognized or supported" until they exist.
+bool grbl_system(char* p) {
+  p = skip_blanks(p);
+  const char c = *p;
+  if (c == '?' || c == '!' || c == '~') {
+    error(code::bad_system_command, kNotHere);
+    return true;
+  }
+  if (c != '$') return false;
+  const char what = char(p[1] & ~0x20);
+  if (p[1] == '\0') {
+    hal::uart::write_P(PSTR("[HLP:$ $I $G]\n"));
+  } else if (p[2] != '\0' || !(what == 'I' || (board::kGcode && what == 'G'))) {
+    error(code::bad_system_command, kNotHere);
+    return true;
+  } else if (what == 'I') {
+    hal::uart::write_P(PSTR("[VER:1.1h.avrmotion-" AVRMOTION_VERSION ":" AVRMOTION_BOARD_NAME "]\n[OPT:,"));
+    hal::uart::write_u32(board::kPathBlocks);
+    hal::uart::write(',');
+    hal::uart::write_u32(kReceiveRing);
+    hal::uart::write_P(PSTR("]\n"));
+  } else {
+    gcode::write_state();
+  }
+  ok();
+  return true;
+}
+
+void on_line(Reader::Line kind) {
   if (tainted) {
     tainted = hal::uart::available();
-    error(PSTR("serial overrun, line dropped"));
-  } else if (line == Reader::Line::too_long) {
-    error(PSTR("line too long (max 80 characters)"));
-  } else if (line == Reader::Line::bad_byte) {
-    error(PSTR("control or non-ASCII byte in line"));
+    // Marlin: the host sends the line again.
+    if (kMarlin) return resend(PSTR("serial overrun, line dropped"));
+    return error(code::overrun, PSTR("serial overrun, line dropped"));
+  }
+  if (kind == Reader::Line::too_long) return error(code::line_overflow, PSTR("line too long (max 96 characters)"));
+  if (kind == Reader::Line::bad_byte) {
+    if (kMarlin) return resend(PSTR("control or non-ASCII byte in line"));
+    return error(code::bad_byte, PSTR("control or non-ASCII byte in line"));
+  }
+  char* line = reader.text();
+  if (kMarlin) {
+    line = numbered(line);
+    if (!line || marlin_code(line)) return;
+  } else if (grbl_system(line)) {
+    return;
+  }
+  if (board::kGcode && gcode::claims(line)) {
+    if (gcode::accept(line)) hold(Waiting::gcode);
+    return;
+  }
+  const am::ParseError e = board::kCommands ? am::parse_command(line, command) : am::ParseError::unknown_command;
+  if (e == am::ParseError::none) {
+    hold(Waiting::command);
+  } else if (e == am::ParseError::empty) {
+    ok();  // spaces and tabs only: nothing to do, but every line is answered
   } else {
-    if (board::kGcode && (!board::kCommands || gcode::claims(reader.text()))) {
-      if (gcode::accept(reader.text())) waiting = Waiting::gcode;
-      return;
-    }
-    const am::ParseError e = am::parse_command(reader.text(), command);
-    if (e == am::ParseError::none) {
-      waiting = Waiting::command;
-    } else if (e == am::ParseError::empty) {
-      ok();  // spaces and tabs only: nothing to do, but every line is answered
-    } else {
-      error(parse_error_text(e));
-    }
+    parse_error(e);
+  }
+}
+
+bool done_waiting() {
+  switch (waiting) {
+    case Waiting::command: return !board::kCommands || execute(command);
+    case Waiting::gcode: return !board::kGcode || gcode::execute();
+    default:  // drain: Marlin's M400
+      if (!path::at_rest()) return false;
+      ok();
+      return true;
   }
 }
 
 }  // namespace
 
 void banner() {
-  hal::uart::write_P(PSTR("avrmotion " AVRMOTION_VERSION " board="));
-  hal::uart::write_P(PSTR(AVRMOTION_BOARD_NAME " mcu=" AVRMOTION_MCU_NAME));
-  hal::uart::write_P(PSTR(" f_cpu="));
+  hal::uart::write_P(kMarlin ? PSTR("start\necho:") : PSTR("Grbl 1.1h ['$' for help]\n[MSG:"));
+  hal::uart::write_P(PSTR("avrmotion " AVRMOTION_VERSION " board=" AVRMOTION_BOARD_NAME " mcu=" AVRMOTION_MCU_NAME
+                          " f_cpu="));
   hal::uart::write_u32(F_CPU);
-  hal::uart::write('\n');
+  reply::info_end();
 }
 
 void poll() {
+  if (kMarlin && halted) {
+    while (hal::uart::available()) {
+      const Reader::Line line = reader.feed(char(hal::uart::read()));
+      if (line != Reader::Line::none) refuse_halted();
+    }
+    return;
+  }
   path::pump();
   if (waiting != Waiting::nothing) {
-    const bool done = board::kCommands && waiting == Waiting::command ? execute(command) : (!board::kGcode || gcode::execute());
-    if (!done) return;
+    if (!done_waiting()) {
+      // Marlin's host keep-alive: a host that hears nothing for long
+      // takes the line as lost.
+      if (kMarlin && clock::due(busy_at, clock::ms(kBusyPeriodMs))) hal::uart::write_P(PSTR("busy: processing\n"));
+      return;
+    }
     waiting = Waiting::nothing;
   }
   while (waiting == Waiting::nothing && hal::uart::available()) {

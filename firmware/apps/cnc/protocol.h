@@ -1,15 +1,23 @@
-// The text protocol on the UART (docs/protocol.md): one command per line,
-// answered by "ok" or "error: <reason>" once it has been accepted or refused.
+// The line protocol on the UART (docs/protocol.md), in the board's style
+// (board::kProtocol): grbl 1.1 (`ok`, `error:N`) or Marlin (`ok`, numbered
+// and checksummed lines, `Resend:`). One answer per line.
 //
 // Contract
-//   poll() is called from the main loop. It reads received bytes into the line
-//   buffer only while no command is waiting, so a command that must wait (a
-//   move while the previous one is still being queued, POS/WAIT/RELEASE until
-//   motion ends) holds back the next line instead of losing it. The sender
-//   keeps one line in flight and sends the next after the answer.
+//   banner() once after reset; poll() from the main loop. poll() reads
+//   received bytes into the line buffer only while no line is waiting, so a
+//   line that must wait (a move while the ring is full, POS/WAIT/RELEASE or
+//   M400 until motion ends) holds back the next one instead of losing it.
+//   A sender keeps one line in flight, or counts characters against
+//   kReceiveRing (grbl's streaming).
 #pragma once
+#include <stdint.h>
 
 namespace protocol {
+
+constexpr uint8_t kLineCapacity = 96;  // Marlin's MAX_CMD_SIZE; a longer line is refused whole
+// The UART's receive ring (hal/avr/uart.cpp's kRxSize), which `$I` reports
+// to a character-counting sender.
+constexpr uint8_t kReceiveRing = 64;
 
 void banner();
 void poll();

@@ -15,6 +15,20 @@ namespace realtime {
 namespace {
 
 constexpr uint8_t kStatus = 1, kHold = 2, kResume = 4;
+
+// Whether every axis counts in micrometres (a step/dir axis of 1 um per
+// step): the report then prints the count as it is.
+template <typename Set>
+struct InMicrometres;
+template <typename... A>
+struct InMicrometres<AxisSet<A...>> {
+  static constexpr bool all(bool first = true) { return first; }
+  template <typename... More>
+  static constexpr bool all(bool first, bool second, More... more) {
+    return first && all(second, more...);
+  }
+  static constexpr bool value = all((uint64_t(A::descriptor().steps_per_m) * OwnUnits<A>::per_full_step == 1000000u)...);
+};
 volatile uint8_t asked;
 
 void write_state() {
@@ -35,10 +49,10 @@ void write_state() {
   for (uint8_t i = 0; i < board::Axes::count; ++i) {
     if (i) hal::uart::write(',');
     // Micrometres: units over units per metre (full steps per metre times
-    // units per full step), in float: 1 um in 10 m.
+    // units per full step), in float (1 um in 10 m) unless they are units.
     const float per_um = float(board::Axes::steps_per_m_at(i)) * board::Axes::units_per_full_step_at(i) * 1e-6f;
     const float um = float(now[i]) / per_um;
-    am::format_fixed(buf, int32_t(um < 0 ? um - 0.5f : um + 0.5f), 3);
+    am::format_fixed(buf, InMicrometres<board::Axes>::value ? now[i] : int32_t(um < 0 ? um - 0.5f : um + 0.5f), 3);
     hal::uart::write(buf);
   }
   hal::uart::write_P(PSTR("|FS:"));

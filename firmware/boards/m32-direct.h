@@ -1,0 +1,21 @@
+// Board: ATmega32 printer/CNC controller (seed-002) with the direct controls:
+// MOVE, POS, WAIT, RELEASE, MODE (docs/protocol.md) beside G-code, grbl
+// style, no arcs, no realtime bytes. The image for bringing up motors and
+// drivers (a move in steps at a rate and an acceleration of its own) and the
+// one the step engine's figures are measured on (docs/benchmarks.md,
+// tests/sim/test_invariants.cpp). Wiring: firmware/boards/common/m32_wiring.h.
+// avrmotion-board: mcu=atmega32 f_cpu=16000000 app=cnc
+#pragma once
+#include "common/m32_wiring.h"
+
+namespace board {
+
+using namespace m32_wiring;
+
+using Claims = hal::ClaimSet<kStepClock, kClock, hal::claim::uart, Axes::Claims::all>;
+
+constexpr bool kGcode = true;  // the cnc program speaks G-code (docs/gcode.md)
+constexpr bool kArcs = false;
+constexpr uint8_t kPathBlocks = 5;  // look-ahead ring (firmware/engine/path.h), 62 B a block
+
+}  // namespace board
