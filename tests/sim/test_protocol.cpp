@@ -188,7 +188,9 @@ TEST(Protocol, AFloodLosesNoAcknowledgedLineAndMergesNone) {
     m.serial().send_raw("\n");
     m.run([] { return false; }, 16000000 / 10);
     ASSERT_LE(got.size(), flushed + 2);
-    if (got.size() > flushed) EXPECT_EQ(got.back(), "error:115");
+    if (got.size() > flushed) {
+      EXPECT_EQ(got.back(), "error:115");
+    }
     // A paced line afterwards is answered once and runs.
     const size_t after = got.size();
     m.serial().send_raw("MOVE X4096\nWAIT\n");

@@ -28,23 +28,11 @@
 namespace {
 
 using ptytest::Client;
+using ptytest::report_number;
+using ptytest::report_string;
 using ptytest::SimProcess;
 using simtest::slurp;
 using simtest::temp_path;
-
-// A number of the report: `key` inside the object `object` ("" = anywhere
-// first), e.g. ("X", "steps") for axes.X.steps.
-double report_number(const std::string& json, const std::string& object, const std::string& key) {
-  const std::regex re((object.empty() ? "" : "\"" + object + "\": \\{[^}]*?") + "\"" + key + "\": ([-0-9.e+]+)");
-  std::smatch m;
-  return std::regex_search(json, m, re) ? std::atof(m[1].str().c_str()) : -1e300;
-}
-
-std::string report_string(const std::string& json, const std::string& key) {
-  const std::regex re("\"" + key + "\": (\"[^\"]*\"|\\[[^\\]]*\\])");
-  std::smatch m;
-  return std::regex_search(json, m, re) ? m[1].str() : "<missing>";
-}
 
 // Steps per mm of an axis of an image (its board descriptor).
 double steps_per_mm(const std::string& image, char axis) {
