@@ -31,7 +31,10 @@ namespace code = reply::code;
 
 using Reader = am::LineReader<kLineCapacity>;
 Reader reader;
-constexpr am::Command& command = pending::line.command;
+// The waiting command shares its RAM with a G-code action (pending.h); a
+// board without G-code keeps its own, and the linker drops the union.
+am::Command own_command;
+constexpr am::Command& command = board::kGcode ? pending::line.command : own_command;
 // What was accepted and waits for its turn: `command`, the G-code line's
 // action (gcode.h), or Marlin's M400 (motion to end).
 enum class Waiting : uint8_t { nothing, command, gcode, drain };
