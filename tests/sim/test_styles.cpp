@@ -197,3 +197,59 @@ TEST(Styles, GrblAnswersItsDollarLinesAndReservesTheOthers) {
   for (size_t i = 5; i < 11; ++i) EXPECT_EQ(m->serial().responses()[i].reason, "not in this image");
   EXPECT_EQ(m->serial().responses()[11].reason, "unsupported G or M code");
 }
+
+TEST(Styles, AMarlinFloodIsRefusedFromItsGapOnAndResentLosesNothing) {
+  // Twelve numbered moves of 1, 2, 4 ... 2048 steps back to back, ignoring
+  // the answers: the receive ring overflows while a move waits for the
+  // ring. From the first line lost or refused on, every line is refused
+  // (out of turn, or spliced across the gap) and not run; the host then
+  // sends again from the last `Resend:` number, one line at a time, and
+  // every move has run exactly once.
+  for (size_t junk = 0; junk < 24; junk += 5) {
+    SCOPED_TRACE(junk);
+    sim::Machine m(simtest::image("m32"));
+    m.serial().add_line(numbered(1, "G91"));
+    ASSERT_EQ(m.run_script(16000000), sim::RunEnd::done);
+    std::vector<std::string> lines;
+    for (int i = 0; i < 12; ++i)
+      lines.push_back(numbered(2 + i, "G1 X" + std::to_string((1 << i) / 1000.0).substr(0, 6) + " F30000"));
+    std::string flood = std::string(junk, ' ');
+    for (const std::string& l : lines) flood += l + "\n";
+    const auto& got = m.serial().received();
+    const size_t before = got.size();
+    m.serial().send_raw(flood);
+    long last = -1;
+    const auto oks = [&] { return std::count(got.begin() + long(before), got.end(), std::string("ok")); };
+    for (int i = 0; i < 20 && oks() != last; ++i) {
+      last = oks();
+      m.run([] { return false; }, 16000000 / 2);
+    }
+    long resend = -1;
+    size_t refusals = 0;
+    for (size_t i = before; i < got.size(); ++i) {
+      if (got[i].rfind("Resend: ", 0) == 0) resend = std::stol(got[i].substr(8));
+      refusals += got[i].rfind("Error:", 0) == 0;
+    }
+    EXPECT_LE(oks(), 12);  // no line answered twice
+    EXPECT_GT(refusals, 0u);  // the flood did overflow
+    ASSERT_GE(resend, 2);
+    const int ran = int(m.axis('X')->steps());
+    // The lines before the first refusal ran, in order, and nothing else.
+    EXPECT_EQ(ran, (1 << (resend - 2)) - 1) << "resend from " << resend;
+    EXPECT_EQ(oks() - long(refusals), resend - 2);
+    // Sent again from there, paced, as a host does: on every refusal from
+    // its `Resend:` number (the first may still meet the flood's last,
+    // unfinished line). All twelve moves, each once.
+    for (long n = resend, tries = 0; n < 14 && tries < 30; ++tries) {
+      m.serial().add_line(lines[size_t(n - 2)]);
+      ASSERT_EQ(m.run_script(16000000ull * 2), sim::RunEnd::done);
+      if (m.serial().responses().back().answer == "ok") {
+        ++n;
+        continue;
+      }
+      for (const std::string& l : got)
+        if (l.rfind("Resend: ", 0) == 0) n = std::stol(l.substr(8));
+    }
+    EXPECT_EQ(int(m.axis('X')->steps()), 4095);
+  }
+}
