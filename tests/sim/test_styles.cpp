@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "board_info.h"
 #include "sim_fixture.h"
 #include "thermal_plant.h"
 
@@ -194,6 +195,14 @@ TEST(Styles, GrblAnswersItsDollarLinesAndReservesTheOthers) {
             (std::vector<std::string>{"[HLP:$ $I $G]", "[VER:1.1h.avrmotion-" AVRMOTION_VERSION_STRING ":uno]",
                                       "[OPT:,5,64]", "[GC:G0 G17 G21 G90 G94 M82 F0]",
                                       "[GC:G1 G17 G20 G91 G94 M83 F25]"}));
+  // The ring $I reports is the UART's own (hal/avr/uart.cpp's rx_buf, as
+  // the image holds it): a character-counting sender trusts that figure.
+  const uint32_t reported = uint32_t(std::stoul(msgs[2].substr(msgs[2].rfind(',') + 1)));
+  for (const char* image : {"uno", "m32-cnc", "m16"}) {  // one constant, protocol::kReceiveRing, on every image
+    const sim::ElfSymbol ring = sim::find_symbol(simtest::image(image), "_ZN3hal4uart12_GLOBAL__N_16rx_bufE");
+    ASSERT_TRUE(ring.found) << image;
+    EXPECT_EQ(ring.size, reported) << image;
+  }
   for (size_t i = 5; i < 11; ++i) EXPECT_EQ(m->serial().responses()[i].reason, "not in this image");
   EXPECT_EQ(m->serial().responses()[11].reason, "unsupported G or M code");
 }

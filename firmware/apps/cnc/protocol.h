@@ -16,7 +16,8 @@ namespace protocol {
 
 constexpr uint8_t kLineCapacity = 96;  // Marlin's MAX_CMD_SIZE; a longer line is refused whole
 // The UART's receive ring (hal/avr/uart.cpp's kRxSize), which `$I` reports
-// to a character-counting sender.
+// to a character-counting sender (tests/sim/test_styles.cpp checks it
+// against the ring in the image).
 constexpr uint8_t kReceiveRing = 64;
 
 void banner();
