@@ -14,11 +14,14 @@
 # workflow to go idle with every line received, closes the port and prints
 # the report's axes.
 #
-# Status: written against cncjs 1.9's socket API and NOT RUN here. cncjs in
-# Grbl mode polls with grbl's realtime `?` (no line end) every 250 ms and
-# reads `$$` at connect; the firmware's realtime bytes and settings are
-# separate work (docs/protocol.md): until they exist the `?` bytes spoil the
-# lines they fall into (error:3 / error:1) and this check fails.
+# Status (run once here, cncjs 1.11.5 on Node.js 20, npm's install scripts
+# not run): cncjs connects in Grbl mode, reads the banner, its `$$` gets
+# error:3 (`[MSG:not in this image]`), and it streams counting against grbl's
+# 128 bytes: the firmware's 64-byte receive ring overflows, lines are refused
+# with error:115 (serial overrun, none runs spliced) and cncjs holds the
+# workflow at the first error, so this check FAILS today. It needs the
+# 128-byte ring and the realtime `?` (cncjs polls with it, no line end),
+# which are separate work (docs/protocol.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/setup.sh
@@ -49,9 +52,9 @@ printf '{"secret":"%s","allowRemoteAccess":false}\n' "$secret" >"$work/cncrc"
 ./build/sim/avrmotion-sim --board m32-cnc --pty --link "$work/port" --speed max --linger 0 \
   --max-seconds 600 --report "$work/report.json" &
 sim=$!
-node "$work/node_modules/cncjs/bin/cncjs" --host 127.0.0.1 --port 8123 --config "$work/cncrc" >"$work/cncjs.log" 2>&1 &
+node "$work/node_modules/cncjs/bin/cncjs" --host 127.0.0.1 --port 8123 --config "$PWD/$work/cncrc" >"$work/cncjs.log" 2>&1 &
 server=$!
-trap 'kill $server 2>/dev/null || true' EXIT
+trap 'kill $server $sim 2>/dev/null || true' EXIT
 for _ in $(seq 1 100); do [ -e "$work/port" ] && grep -q "Started the server" "$work/cncjs.log" && break; sleep 0.2; done
 
 CNCJS_SECRET=$secret CNCJS_PORT=$(readlink -f "$work/port") CNCJS_FILE=$file \
@@ -65,7 +68,7 @@ const gcode = fs.readFileSync(process.env.CNCJS_FILE, 'utf8');
 const socket = io.connect('ws://127.0.0.1:8123', { query: 'token=' + token });
 let started = false;
 const fail = (why) => { console.error('cncjs-check: ' + why); process.exit(1); };
-setTimeout(() => fail('no end within 10 minutes'), 600000);
+setTimeout(() => fail('no end within 5 minutes'), 300000);
 socket.on('connect', () => socket.emit('open', port, { baudrate: 115200, controllerType: 'Grbl' }));
 socket.on('serialport:error', (e) => fail('port: ' + JSON.stringify(e)));
 socket.on('serialport:read', (line) => console.error('< ' + line));
