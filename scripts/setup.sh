@@ -8,8 +8,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 # README.md lists exactly these (tests/sim/test_setup_docs.cpp checks it).
+# printrun-common is for the tests only: printrun's printcore, the printer
+# host tests/sim/test_printcore.cpp drives the simulated printer with.
 packages=(gcc-avr avr-libc binutils-avr simavr libsimavr-dev libelf-dev googletest libgtest-dev
-          cmake g++ make pkg-config dpkg-dev xz-utils)
+          cmake g++ make pkg-config dpkg-dev xz-utils printrun-common)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -78,9 +78,10 @@ double interrupt_cycles(const std::map<int, sim::IsrStats>& a, const std::map<in
 
 void load_script(sim::Machine& m, const Scenario& s) {
   m.serial().add_line(move_line(s));
-  // A junk line and its error answer take about 0.5 ms: 2400 cover the
-  // longest scenario (1.1 s).
-  for (int i = 0; i < 2400; ++i) m.serial().add_line("NOP");
+  // A junk line and its refusal (`[MSG:unknown command]`, `error:20`: 35
+  // bytes both ways) take about 3 ms at 115200 baud: 1000 keep the UART busy
+  // for the longest scenario (2.1 s).
+  for (int i = 0; i < 1000; ++i) m.serial().add_line("NOP");
 }
 
 Figures measure(const std::string& dir, const Scenario& s) {
@@ -99,7 +100,7 @@ Figures measure(const std::string& dir, const Scenario& s) {
   const auto after = m.isr_stats();
   if (m.run_script(budget) != sim::RunEnd::done) return f;
   for (const std::string& line : m.serial().received()) {
-    if (line.rfind("warning: F clamped to ", 0) == 0) f.clamped_to = uint32_t(std::stoul(line.substr(22)));
+    if (line.rfind("[MSG:F clamped to ", 0) == 0) f.clamped_to = uint32_t(std::stoul(line.substr(18)));
   }
   const double pos = m.axis(s.axis)->steps();
   f.steps = size_t(pos >= 0 ? pos : -pos);
@@ -162,8 +163,15 @@ SizeRow measure_size(const std::string& dir, const char* name) {
   close(fd);
   sim::Machine m(path);
   if (std::string(name) != "m32-driver") {
-    m.serial().add_line(std::string("MOVE ") + m.axes().front().name + "200 F2000 A8000");
-    m.serial().add_line("POS");
+    const std::string axis(1, m.axes().front().name);
+    if (std::string(name) == "m32") {  // the printer: G-code only (firmware/boards/m32.h)
+      m.serial().add_line("G91");
+      m.serial().add_line("G1 " + axis + "0.2 F120");
+      m.serial().add_line("M114");
+    } else {
+      m.serial().add_line("MOVE " + axis + "200 F2000 A8000");
+      m.serial().add_line("POS");
+    }
     m.run_script(16000000ull * 10);
     r.stack = m.stack_bytes();
   }

@@ -103,7 +103,7 @@ std::string markdown(const std::vector<SizeRow>& sizes, const std::vector<std::v
       "    computes (the same core code run on the host, `sim/schedule.h`), in cycles;\n"
       "  - *doubled*: intervals longer than 1.5 times their scheduled interval;\n"
       "  - *pulse*: shortest..longest STEP high time of the timer-pulsed axis, cycles;\n"
-      "  - *clamped*: the rate the firmware clamped F to (`warning: F clamped to N`);\n"
+      "  - *clamped*: the rate the firmware clamped F to (`[MSG:F clamped to N]`);\n"
       "  - *exact*: the decoded position equals the steps commanded, and as many step\n"
       "    edges were seen. A run that is not exact, or that did not finish, is a\n"
       "    broken run and makes the benchmark fail; no figure has a target to meet.\n\n"

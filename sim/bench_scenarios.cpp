@@ -16,6 +16,8 @@ const std::vector<Table>& engine_tables() {
         {"uno", 'Z', 150000, 300000, 100000, 'B', 1},
         {"uno", 'Z', 160000, 300000, 100000, 'B', 1},
         {"uno", 'Z', 250000, 300000, 100000, 'B', 1}}},
+      // The m32's axes on its direct-control image (the printer and the mill
+      // have no MOVE).
       {"m32 axis X, software STEP pulse (GPIO in the interrupt), 200000 steps/s^2",
        "axis X, software STEP pulse (GPIO in the interrupt), 200000 steps/s^2", "m32 X, software STEP pulse",
        {{"m32-direct", 'X', 10000, 200000, 20000, 0, 0},

@@ -15,14 +15,16 @@
 //     M301            echo: p:<Kp> i:<Ki> d:<Kd> (the gains now), ok
 //     M303            T: lines once a second, then
 //                     `PID Autotune finished: Kp:<> Ki:<> Kd:<>` (applied), ok;
-//                     or `error: autotune: <overshoot, timeout, sensor, gains
+//                     or the refusal `autotune: <overshoot, timeout, sensor, gains
 //                     out of range>` (heater off, the gains as they were)
-//   A wait (M109, M303) ends early when a byte arrives: `error: wait ended
+//   A wait (M109, M303) ends early when a byte arrives: refused, `wait ended
 //   by the host` (M109 keeps its target, M303 leaves the heater off and the
 //   gains as they were); the line that came is then read as usual (M108 is
-//   the one to send). It ends too when a fault latches: `error: heater
+//   the one to send). It ends too when a fault latches: refused, `heater
 //   halted` after the service's `Error:` line. M104, M109 and M303 after a
-//   fault: `error: heater halted (<fault>), reset to clear`, nothing changes.
+//   fault: refused, `heater halted (<fault>), reset to clear`, nothing changes.
+//   Refusals in the board's style (apps/cnc/reply.h: Marlin's `Error:<text>`
+//   and `ok` on the m32).
 #pragma once
 #include "../../core/text/gcode_interpreter.h"
 

@@ -9,13 +9,6 @@ namespace hal {
 namespace uart {
 namespace {
 
-// The program sets the receive ring's size (a power of two up to 128): 128
-// where grbl's senders count characters against it, 64 otherwise.
-#ifndef HAL_UART_RX_SIZE
-#define HAL_UART_RX_SIZE 64
-#endif
-constexpr uint8_t kRxSize = HAL_UART_RX_SIZE;
-static_assert(kRxSize <= 128 && (kRxSize & (kRxSize - 1)) == 0, "HAL_UART_RX_SIZE: a power of two up to 128");
 constexpr uint8_t kTxSize = 64;
 
 uint8_t rx_buf[kRxSize];

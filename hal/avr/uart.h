@@ -16,8 +16,17 @@
 #pragma once
 #include <stdint.h>
 
+// The program sets the receive ring's size (a power of two up to 128): 128
+// where grbl's senders count characters against it, 64 otherwise.
+#ifndef HAL_UART_RX_SIZE
+#define HAL_UART_RX_SIZE 64
+#endif
+
 namespace hal {
 namespace uart {
+
+constexpr uint8_t kRxSize = HAL_UART_RX_SIZE;
+static_assert(kRxSize <= 128 && (kRxSize & (kRxSize - 1)) == 0, "HAL_UART_RX_SIZE: a power of two up to 128");
 
 void init(uint32_t f_cpu, uint32_t baud);
 void off();              // receiver and transmitter off: RXD/TXD are plain pins

@@ -16,12 +16,28 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdlib>
+#include <regex>
 #include <string>
 #include <vector>
 
 namespace ptytest {
 
 constexpr int kGuardMs = 30000;
+
+// A number of avrmotion-sim's JSON report: `key` inside the object `object`
+// ("" = anywhere first), e.g. ("X", "steps") for axes.X.steps.
+inline double report_number(const std::string& json, const std::string& object, const std::string& key) {
+  const std::regex re((object.empty() ? "" : "\"" + object + "\": \\{[^}]*?") + "\"" + key + "\": ([-0-9.e+]+)");
+  std::smatch m;
+  return std::regex_search(json, m, re) ? std::atof(m[1].str().c_str()) : -1e300;
+}
+
+inline std::string report_string(const std::string& json, const std::string& key) {
+  const std::regex re("\"" + key + "\": (\"[^\"]*\"|\\[[^\\]]*\\])");
+  std::smatch m;
+  return std::regex_search(json, m, re) ? m[1].str() : "<missing>";
+}
 
 // Waits for `fd` to be readable (or hung up); false after kGuardMs.
 inline bool wait_readable(int fd) {

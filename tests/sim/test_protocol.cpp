@@ -67,7 +67,9 @@ TEST(Protocol, ControlAndNonAsciiBytesRefuseTheWholeLine) {
       if (l.rfind("[MSG:", 0) != 0 && l.rfind("Error:", 0) != 0 && l != "Resend: 1") reports.push_back(l);
     ASSERT_EQ(reports.size(), 1u) << image;
     EXPECT_EQ(reports[0].find(":-"), std::string::npos) << reports[0];  // still all at zero
-    if (marlin) EXPECT_EQ(reports[0].substr(0, 7), "X:0.000") << reports[0];
+    if (marlin) {
+      EXPECT_EQ(reports[0].substr(0, 7), "X:0.000") << reports[0];
+    }
   }
 }
 
@@ -188,7 +190,9 @@ TEST(Protocol, AFloodLosesNoAcknowledgedLineAndMergesNone) {
     m.serial().send_raw("\n");
     m.run([] { return false; }, 16000000 / 10);
     ASSERT_LE(got.size(), flushed + 2);
-    if (got.size() > flushed) EXPECT_EQ(got.back(), "error:115");
+    if (got.size() > flushed) {
+      EXPECT_EQ(got.back(), "error:115");
+    }
     // A paced line afterwards is answered once and runs.
     const size_t after = got.size();
     m.serial().send_raw("MOVE X4096\nWAIT\n");

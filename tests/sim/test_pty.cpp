@@ -28,23 +28,11 @@
 namespace {
 
 using ptytest::Client;
+using ptytest::report_number;
+using ptytest::report_string;
 using ptytest::SimProcess;
 using simtest::slurp;
 using simtest::temp_path;
-
-// A number of the report: `key` inside the object `object` ("" = anywhere
-// first), e.g. ("X", "steps") for axes.X.steps.
-double report_number(const std::string& json, const std::string& object, const std::string& key) {
-  const std::regex re((object.empty() ? "" : "\"" + object + "\": \\{[^}]*?") + "\"" + key + "\": ([-0-9.e+]+)");
-  std::smatch m;
-  return std::regex_search(json, m, re) ? std::atof(m[1].str().c_str()) : -1e300;
-}
-
-std::string report_string(const std::string& json, const std::string& key) {
-  const std::regex re("\"" + key + "\": (\"[^\"]*\"|\\[[^\\]]*\\])");
-  std::smatch m;
-  return std::regex_search(json, m, re) ? m[1].str() : "<missing>";
-}
 
 // Steps per mm of an axis of an image (its board descriptor).
 double steps_per_mm(const std::string& image, char axis) {
@@ -222,7 +210,7 @@ TEST(Pty, ABudgetEndsASessionThatGoesOnTooLong) {
 // line is refused, and the file ends exactly on its target.
 TEST(Pty, ACharacterCountingClientFillsTheReceiveRingAndLosesNothing) {
   const std::string report = temp_path("pty-count.json");
-  SimProcess sim({"--board", "m32-direct", "--pty", "--speed", "max", "--linger", "0", "--max-seconds", "60", "--report",
+  SimProcess sim({"--board", "m32-cnc", "--pty", "--speed", "max", "--linger", "0", "--max-seconds", "60", "--report",
                   report});
   const std::string path = sim.pty_path();
   ASSERT_FALSE(path.empty()) << sim.stderr_text();
@@ -234,7 +222,7 @@ TEST(Pty, ACharacterCountingClientFillsTheReceiveRingAndLosesNothing) {
   std::smatch opt;
   ASSERT_TRUE(std::regex_match(info[1], opt, std::regex(R"(\[OPT:,(\d+),(\d+)\])"))) << info[1];
   const size_t ring = std::stoul(opt[2]);
-  EXPECT_EQ(ring, 64u);
+  EXPECT_EQ(ring, 128u);  // grbl's own figure, with the realtime bytes (docs/realtime.md)
   // A milling-style file: 400 short feeds with three decimals around a
   // square, then the end point.
   std::vector<std::string> lines{"G21", "G90"};
@@ -252,17 +240,19 @@ TEST(Pty, ACharacterCountingClientFillsTheReceiveRingAndLosesNothing) {
   EXPECT_EQ(r.errors, 0u);
   EXPECT_GE(r.most_lines, 3u);  // it did stream
   EXPECT_LE(r.most_bytes, ring);
+  EXPECT_EQ(c.command("M400", &info), "ok");  // the motion's end
   info.clear();
-  EXPECT_EQ(c.command("POS", &info), "ok");
-  const long x = std::lround(1.234 * steps_per_mm("m32-direct", 'X')), y = std::lround(0.567 * steps_per_mm("m32-direct", 'Y'));
+  EXPECT_EQ(c.command("M114", &info), "ok");
+  const long x = std::lround(1.234 * steps_per_mm("m32-cnc", 'X')), y = std::lround(0.567 * steps_per_mm("m32-cnc", 'Y'));
   ASSERT_EQ(info.size(), 1u);
-  EXPECT_EQ(info[0].rfind("pos X:" + std::to_string(x) + " Y:" + std::to_string(y) + " ", 0), 0u) << info[0];
+  EXPECT_NE(info[0].find(" Count X:" + std::to_string(x) + " Y:" + std::to_string(y) + " "), std::string::npos)
+      << info[0];
   c.close_port();
   ASSERT_EQ(sim.wait_exit(), 0) << sim.stderr_text();
   const std::string json = slurp(report);
   EXPECT_EQ(report_number(json, "X", "steps"), double(x));
   EXPECT_EQ(report_number(json, "Y", "steps"), double(y));
-  EXPECT_EQ(report_number(json, "", "lines_ok"), double(lines.size() + 2));  // with $I and POS
+  EXPECT_EQ(report_number(json, "", "lines_ok"), double(lines.size() + 3));  // with $I, M400 and M114
   EXPECT_EQ(report_string(json, "errors"), "[]");
   std::remove(report.c_str());
 }

@@ -31,7 +31,10 @@ namespace code = reply::code;
 
 using Reader = am::LineReader<kLineCapacity>;
 Reader reader;
-constexpr am::Command& command = pending::line.command;
+// The waiting command shares its RAM with a G-code action (pending.h); a
+// board without G-code keeps its own, and the linker drops the union.
+am::Command own_command;
+constexpr am::Command& command = board::kGcode ? pending::line.command : own_command;
 // What was accepted and waits for its turn: `command`, the G-code line's
 // action (gcode.h), or Marlin's M400 (motion to end).
 enum class Waiting : uint8_t { nothing, command, gcode, drain };
@@ -254,12 +257,23 @@ void firmware_info() {
 
 void refuse_halted() { error(code::heater, PSTR("Printer halted (M112), reset to restart")); }
 
+// The heater's output off now, on a board that has one (board::Heater is
+// declared only there).
+template <typename H>
+auto heater_output_off(int) -> decltype(H::Pwm::set(0)) {
+  H::Pwm::set(0);
+}
+template <typename H>
+void heater_output_off(long) {}
+
 // M112: steps stop at once (the step timer with them), coils and drivers
-// off, the heater off; every line from then on is refused until reset.
+// off, the heater off (its target 0 from then on); every line from then on
+// is refused until reset.
 void halt() {
   hal::step_timer::stop();
   board::Axes::release();
   if (board::kHeater) heater::set_target(0);
+  heater_output_off<board::Heater>(0);
   halted = true;
   refuse_halted();
 }

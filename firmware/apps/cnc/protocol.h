@@ -12,12 +12,15 @@
 #pragma once
 #include <stdint.h>
 
+#include "../../../hal/avr/uart.h"
+
 namespace protocol {
 
 constexpr uint8_t kLineCapacity = 96;  // Marlin's MAX_CMD_SIZE; a longer line is refused whole
-// The UART's receive ring (hal/avr/uart.cpp's kRxSize), which `$I` reports
-// to a character-counting sender.
-constexpr uint8_t kReceiveRing = 64;
+// The UART's receive ring (hal::uart::kRxSize: 128 with grbl's realtime
+// bytes, 64 otherwise), which `$I` reports to a character-counting sender
+// (tests/sim/test_styles.cpp checks it against the ring in the image).
+constexpr uint8_t kReceiveRing = hal::uart::kRxSize;
 
 void banner();
 void poll();
