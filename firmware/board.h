@@ -4,6 +4,8 @@
 #pragma once
 #include AVRMOTION_BOARD_HEADER
 
+#include "axes/endstops.h"
+
 // What a board header may leave out. A board's own declaration wins:
 // `board::kHeater` finds the board's name first and looks into the namespaces
 // `board` uses only when the board has none (qualified lookup).
@@ -14,6 +16,12 @@ struct Heater;  // a heater's wiring (firmware/boards/m32.h), only with kHeater
 // counts where the motors are while they move. Without it, where the
 // queued motion ends (Marlin's logical position).
 constexpr bool kOdometer = true;
+// Endstops (firmware/axes/endstops.h): none, so no hard limits. kHoming
+// links the homing service (G28, firmware/services/homing.h) beside them;
+// kHomingSettings (one HomingAxis per endstop) is then the board's own.
+using Endstops = EndstopSet<AxisSet<>, false>;
+constexpr bool kHoming = false;
+constexpr HomingSettings<1> kHomingSettings = {};
 }  // namespace board_defaults
 namespace board {
 using namespace board_defaults;

@@ -21,7 +21,17 @@ struct Heater {
   static constexpr uint32_t claims = Pwm::claims | hal::claim::adc;
 };
 
-using Claims = hal::ClaimSet<kStepClock, kClock, hal::claim::uart, Axes::Claims::all, Heater::claims>;
+// Hard limits, homing (G28) and soft limits on the min endstops
+// (docs/homing.md): X and Y home at 25 mm/s and locate at 1 mm/s, Z at 4 and
+// 0.5 mm/s; 1 mm back-off and pull-off; after homing every axis is at 0 and
+// may go 200 mm (Z 180 mm) up from there: an i3-style printer.
+using Endstops = EndstopWiring;
+constexpr bool kHoming = true;
+constexpr HomingSettings<3> kHomingSettings = {{{25000, 1000, 1000, 1000, 0, 200000},
+                                                {25000, 1000, 1000, 1000, 0, 200000},
+                                                {4000, 500, 1000, 1000, 0, 180000}}};
+
+using Claims = hal::ClaimSet<kStepClock, kClock, hal::claim::uart, Axes::Claims::all, Heater::claims, Endstops::claims>;
 
 constexpr bool kGcode = true;  // the cnc program speaks G-code (docs/gcode.md)
 // The flash the heater needs: G2/G3 (7.5 KB) and the odometer (1 KB) are

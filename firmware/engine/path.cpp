@@ -3,6 +3,7 @@
 #include "../../core/motion/path_planner.h"
 #include "../../core/motion/trapezoid.h"
 #include "clock.h"
+#include "limits.h"
 #include "odometer.h"
 #include "step_engine.h"
 
@@ -172,7 +173,22 @@ void release() {
 }
 void start() { starting = true; }
 
+namespace {
+
+// The step interrupt stopped at an endstop: every block and dwell still to
+// come is dropped with the engine's queue (limits.h says what that means).
+void drop_everything() {
+  if (board::kGcode) plan().clear();
+  generating = direct_waiting = exit_moving = starting = draining = engine_was_busy = false;
+  dwell_ms = 0;
+  engine::clear_trip();
+  limits::tripped();
+}
+
+}  // namespace
+
 void pump() {
+  if (board::Endstops::count && engine::stopped_at_endstop()) drop_everything();
   if (engine_was_busy && !engine::busy() && (generating || exit_moving)) ++starvations;
   for (;;) {
     if (engine::queue_full()) break;

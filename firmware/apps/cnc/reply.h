@@ -1,5 +1,5 @@
 // The answers every line of the cnc protocol ends with: `ok`, or
-// `error: <reason>` (docs/protocol.md, docs/gcode.md).
+// `error: <reason>` (docs/protocol.md, docs/gcode.md); and the alarm line.
 #pragma once
 #include <avr/pgmspace.h>
 
@@ -11,6 +11,14 @@ inline void ok() { hal::uart::write_P(PSTR("ok\n")); }
 
 inline void error(const char* progmem_reason) {
   hal::uart::write_P(PSTR("error: "));
+  hal::uart::write_P(progmem_reason);
+  hal::uart::write('\n');
+}
+
+// A line of its own, not an answer to any line: the machine has stopped
+// (a hard limit) and refuses motion until unlocked.
+inline void alarm(const char* progmem_reason) {
+  hal::uart::write_P(PSTR("ALARM: "));
   hal::uart::write_P(progmem_reason);
   hal::uart::write('\n');
 }

@@ -14,6 +14,7 @@
 #include "../../../hal/avr/claims.h"
 #include "../../../hal/avr/gpio.h"
 #include "../../axes/axis_set.h"
+#include "../../axes/endstops.h"
 #include "../../axes/step_dir_axis.h"
 
 namespace m32_wiring {
@@ -23,6 +24,13 @@ using Axes = AxisSet<StepDirAxis<'X', Pin<'C', 0>, Pin<'C', 1>, Pin<'B', 0>, tru
                      StepDirAxis<'Y', Pin<'C', 2>, Pin<'C', 3>, Pin<'B', 1>, true, 1000000>,
                      StepDirAxis<'Z', Pin<'C', 4>, Pin<'C', 5>, Pin<'B', 2>, true, 1000000>,
                      StepDirAxis<'E', Pin<'C', 6>, Pin<'C', 7>, Pin<'B', 3>, true, 1000000>>;
+
+// The min endstops of X, Y and Z (docs/homing.md): switches to ground on the
+// pins' pull-ups, closed reads low. PD2 and PD3 are INT0's and INT1's pins,
+// PD4 is OC1B's: reading a switch there claims them (a program that uses
+// them, m32.h, adds EndstopWiring::claims to its set).
+using EndstopWiring = EndstopSet<Axes, false, Endstop<'X', Pin<'D', 2>, hal::claim::int0>,
+                                 Endstop<'Y', Pin<'D', 3>, hal::claim::int1>, Endstop<'Z', Pin<'D', 4>, hal::claim::oc1b>>;
 
 // Hardware claims (hal/avr/claims.h, checked when the image compiles): Timer1
 // is the step clock, the UART talks to the host, Timer0 is the time base
