@@ -128,7 +128,7 @@ uint64_t Machine::cycles() const { return avr_->cycle; }
 
 size_t Machine::reset() {
   avr_reset(avr_);
-  for (const auto& h : held_) apply_held(h.first);
+  reapply_held();
   for (const auto& again : after_reset_) again();
   return serial_->on_reset();
 }
@@ -326,6 +326,7 @@ void Machine::hold_input(char port, uint8_t bit, bool level) {
   h.first = uint8_t(h.first | mask);
   h.second = uint8_t(level ? h.second | mask : h.second & ~mask);
   apply_held(port);
+  set_input(port, bit, level);
 }
 
 void Machine::apply_held(char port) {
@@ -335,14 +336,20 @@ void Machine::apply_held(char port) {
   e.mask = h.first;
   e.value = h.second;
   avr_ioctl(avr_, AVR_IOCTL_IOPORT_SET_EXTERNAL(port), &e);
-  // Raised as a change whatever simavr remembers (a reset cleared the PIN
-  // register, not the pin's last level, and an unchanged level is filtered).
-  for (uint8_t bit = 0; bit < 8; ++bit) {
-    if (!(h.first & (1u << bit))) continue;
-    const uint32_t level = (h.second >> bit) & 1u;
-    avr_irq_t* irq = avr_io_getirq(avr_, AVR_IOCTL_IOPORT_GETIRQ(port), bit);
-    irq->value = level ^ 1u;
-    avr_raise_irq(irq, level);
+}
+
+void Machine::reapply_held() {
+  // A reset cleared the PIN registers but not the pins' last levels, and
+  // simavr filters a level raised again unchanged: raised as a change (the
+  // reset left every edge detector off).
+  for (const auto& h : held_) {
+    for (uint8_t bit = 0; bit < 8; ++bit) {
+      if (!(h.second.first & (1u << bit))) continue;
+      const uint32_t level = (h.second.second >> bit) & 1u;
+      avr_irq_t* irq = avr_io_getirq(avr_, AVR_IOCTL_IOPORT_GETIRQ(h.first), bit);
+      irq->value = level ^ 1u;
+      avr_raise_irq(irq, level);
+    }
   }
 }
 

@@ -185,6 +185,7 @@ class Machine {
   std::map<int, std::vector<PinEdge>> watched_;
   std::map<char, std::pair<uint8_t, uint8_t>> held_;  // port: held pins' mask, levels
   void apply_held(char port);
+  void reapply_held();
   struct PwmHook;
   static void on_pwm_irq(avr_irq_t* irq, uint32_t value, void* param);
   std::map<int, std::unique_ptr<PwmHook>> pwm_hooks_;

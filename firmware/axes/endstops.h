@@ -13,7 +13,10 @@
 //   switch) compiles every use below to nothing.
 //     watch(axes, dirs)  the pin mask of the switches that a segment moving
 //                        `axes` in `dirs` (forward bits) runs toward
-//     closed(pins)       whether a switch of that mask is closed now
+//     watch_latches(axes, dirs)  the same switches' edge latches (those on
+//                        INT0/INT1: their INTFn flags, cleared now)
+//     closed(pins, latches)  whether a switch of those is closed now, or has
+//                        closed since (a latched edge: bounce cannot hide it)
 //     closed_at(k)       whether the k-th switch is closed now
 //     axis_at(k)         its axis index; pin_of(axis) its pin (descriptor)
 //   HomingAxis is what the homing service and the soft limits need of a
@@ -22,14 +25,20 @@
 //   replace the board's constants (board::kHomingSettings) later.
 //
 // Why
-//   Polled in the step interrupt rather than on pin-change interrupts: the
-//   check costs a few cycles of a step event, and a switch is seen at the
-//   next step at the latest whatever its bounce, so no axis runs on by more
-//   than one step period (docs/homing.md).
+//   Read in the step interrupt rather than by an interrupt of their own: the
+//   check costs a few cycles of a step event, and a closed switch is seen at
+//   the next step, so no axis runs on by more than one step period. A
+//   bouncing contact may read open at that step; the INT0/INT1 flags latch
+//   its first closing edge (init(): the sense set, the interrupts left
+//   masked), so X and Y on the m32 stop within one step period whatever
+//   the bounce; a switch on a plain pin (Z) only once its reading is closed
+//   (docs/homing.md).
 #pragma once
 #include <stdint.h>
 
 #include "../../core/board/descriptor.h"
+#include "../../hal/avr/claims.h"
+#include "../../hal/avr/ext_int.h"
 #include "../../hal/avr/gpio.h"
 #include "axis_set.h"
 
@@ -94,6 +103,8 @@ struct Each;
 template <typename Axes>
 struct Each<Axes> {
   static uint8_t read_port() { return 0; }
+  static uint8_t latches(uint8_t) { return 0; }
+  static void init(bool) {}
   static uint8_t watch(uint8_t) { return 0; }
   static uint8_t axis_at(uint8_t) { return 0; }
   static bool read_at(uint8_t) { return false; }
@@ -106,6 +117,16 @@ struct Each<Axes, First, Rest...> {
   static_assert(all_on(First::Pin::port, Rest::Pin::port...),
                 "the endstops share one port: the step interrupt reads them at once");
   static uint8_t read_port() { return hal::PortBits<First::Pin::port>::read(); }
+  // A switch on INT0's or INT1's pin latches its closing edge there.
+  static constexpr bool latching = (First::claims & (hal::claim::int0 | hal::claim::int1)) != 0;
+  static constexpr uint8_t line = (First::claims & hal::claim::int0) ? 0 : 1;
+  static uint8_t latches(uint8_t toward) {
+    return uint8_t(((latching && (toward & bit)) ? hal::ext_int::latch_flag(line) : 0) | Tail::latches(toward));
+  }
+  static void init(bool closed_high) {
+    if (latching) hal::ext_int::latch_edges(line, closed_high);
+    Tail::init(closed_high);
+  }
   using Tail = Each<Axes, Rest...>;
   static uint8_t watch(uint8_t toward) { return uint8_t(((toward & bit) ? First::Pin::mask : 0) | Tail::watch(toward)); }
   static uint8_t axis_at(uint8_t k) { return k == 0 ? uint8_t(__builtin_ctz(bit)) : Tail::axis_at(uint8_t(k - 1)); }
@@ -127,14 +148,22 @@ struct EndstopSet {
   static constexpr uint32_t claims = endstops_detail::or_claims(E::claims...);
   static constexpr bool closed_high = ClosedHigh;
 
-  static uint8_t watch(uint8_t moving, uint8_t dirs) {
-    return count ? Each::watch(uint8_t(moving & axes & ~(dirs ^ max_end))) : 0;
+  // The closing edges of the switches on INT0/INT1 latch (no interrupt).
+  static void init() { Each::init(ClosedHigh); }
+  static uint8_t toward(uint8_t moving, uint8_t dirs) { return uint8_t(moving & axes & ~(dirs ^ max_end)); }
+  static uint8_t watch(uint8_t moving, uint8_t dirs) { return count ? Each::watch(toward(moving, dirs)) : 0; }
+  // Of the latching ones among them: the flags, cleared (an edge of a move
+  // away from the switch, its release's bounce, is not this segment's).
+  static uint8_t watch_latches(uint8_t moving, uint8_t dirs) {
+    const uint8_t flags = count ? Each::latches(toward(moving, dirs)) : 0;
+    if (flags) hal::ext_int::clear_latched(flags);
+    return flags;
   }
-  static bool closed(uint8_t pins) {
+  static bool closed(uint8_t pins, uint8_t latches) {
     if (!count) return false;
     uint8_t level = Each::read_port();
     if (!ClosedHigh) level = uint8_t(~level);
-    return (level & pins) != 0;
+    return (level & pins) != 0 || (hal::ext_int::latched() & latches) != 0;
   }
   static bool closed_at(uint8_t k) { return Each::read_at(k) == ClosedHigh; }
   static uint8_t axis_at(uint8_t k) { return Each::axis_at(k); }

@@ -59,9 +59,9 @@ volatile bool running;
 // The step interrupt stopped at an endstop (hard limit, homing): the queue
 // stays as it was until clear_trip().
 volatile bool tripped;
-// The pins of the endstops the current segment runs toward
-// (board::Endstops::watch): each step event of it first checks them.
-uint8_t endstop_watch;
+// The pins and edge latches of the endstops the current segment runs
+// toward (board::Endstops::watch): each step event of it first checks them.
+uint8_t endstop_watch, endstop_latches;
 
 // The rest of the segment being executed, copied out of the queue so the
 // C handler reads fixed addresses instead of indexing the ring.
@@ -131,7 +131,10 @@ __attribute__((noinline)) void load_front(const am::StepSegment& s) {
   step_dirs = s.dirs;
   step_fast = fast_eligible(s) ? (s.count == 1 ? 2 : 1) : 0;
   board::Axes::set_direction(s.axes, s.dirs);
-  if (board::Endstops::count) endstop_watch = board::Endstops::watch(s.axes, s.dirs);
+  if (board::Endstops::count) {
+    endstop_watch = board::Endstops::watch(s.axes, s.dirs);
+    endstop_latches = board::Endstops::watch_latches(s.axes, s.dirs);
+  }
   track_next(s);
 }
 
@@ -415,7 +418,7 @@ inline void step_event() {
   }
   // A switch the segment runs toward has closed: this step is not made, and
   // nothing moves until the main loop has seen it (clear_trip()).
-  if (board::Endstops::closed(endstop_watch)) {
+  if (board::Endstops::closed(endstop_watch, endstop_latches)) {
     stop_engine();
     tripped = true;
     return;

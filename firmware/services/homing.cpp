@@ -59,7 +59,6 @@ Result run(uint8_t axes) {
       }
     } while (!(running & (1u << Endstops::axis_at(k))));
     limits::homing(true);
-    planner::set_position(Endstops::axis_at(k), 0);
     phase = Phase::start;
   }
   const HomingAxis& s = limits::settings.axis[k];

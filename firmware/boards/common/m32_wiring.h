@@ -66,6 +66,7 @@ inline void init() {
   Pin<'A', 5>::input_pullup();
   Pin<'A', 6>::input_pullup();
   Pin<'A', 7>::input_pullup();
+  EndstopWiring::init();
   Axes::init();
 }
 
