@@ -18,7 +18,7 @@ using Endstops = board::Endstops;
 const char kNotFound[] PROGMEM = "homing: endstop not found";
 
 // The move the axis has just made, which the next step checks.
-enum class Phase : uint8_t { next_axis, start, cleared, seek, back_off, locate, pull_off };
+enum class Phase : uint8_t { next_axis, seek, back_off, locate, pull_off };
 Phase phase;
 uint8_t running;  // the mask being homed; 0: not homing
 uint8_t k;        // the switch being homed
@@ -59,7 +59,12 @@ Result run(uint8_t axes) {
       }
     } while (!(running & (1u << Endstops::axis_at(k))));
     limits::homing(true);
-    phase = Phase::start;
+    // A switch closed already stops the seek at its first step: the
+    // back-off then comes first.
+    go(int32_t(limits::settings.axis[k].travel + limits::settings.axis[k].travel / 2),
+       limits::settings.axis[k].seek_rate);
+    phase = Phase::seek;
+    return Result::busy;
   }
   const HomingAxis& s = limits::settings.axis[k];
   const bool closed = Endstops::closed_at(k);
@@ -70,13 +75,6 @@ Result run(uint8_t axes) {
   const Phase was = phase;
   phase = Phase(uint8_t(was) + 1);
   switch (was) {
-    case Phase::start:  // on the switch already: off it first
-      if (closed) break;
-      phase = Phase::seek;
-      // fall through
-    case Phase::cleared:  // a switch that stays closed stops the seek at once and fails below
-      steps = int32_t(s.travel + s.travel / 2);
-      break;
     case Phase::seek:
       if (!found) failure = kNotFound;
       break;
