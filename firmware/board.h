@@ -27,6 +27,9 @@ namespace board {
 using namespace board_defaults;
 }  // namespace board
 
+static_assert(!board::kHoming || board::kHeater,
+              "the homing service is in the services part, which apps/cnc/app.cmake links for a heater board");
+
 // Every board lists its hardware claims; completing the type runs their
 // compile-time checks (hal/avr/claims.h).
 static_assert(sizeof(board::Claims) > 0, "board::Claims");

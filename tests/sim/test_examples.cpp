@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "endstops.h"
 #include "sim_fixture.h"
 
 namespace {
@@ -36,11 +37,17 @@ TEST(Examples, UnoDemo) {
 }
 
 TEST(Examples, M32Demo) {
-  auto m = simtest::run("m32", job("m32-demo.txt"), 30);
-  EXPECT_TRUE(m->serial().errors().empty());
-  const std::vector<std::string> messages = {"warning: F clamped to 40000", "pos X:0 Y:-15000 Z:500 E:3000"};
-  EXPECT_EQ(m->serial().messages(), messages);
-  EXPECT_DOUBLE_EQ(m->axis('Y')->steps(), -15000);
+  // The world avrmotion-sim gives the m32: its switches at 0.
+  sim::Machine m(simtest::image("m32"));
+  sim::Endstops switches(m);
+  for (const std::string& l : job("m32-demo.txt")) m.serial().add_line(l);
+  ASSERT_EQ(m.run_script(uint64_t(30 * m.f_cpu())), sim::RunEnd::done);
+  EXPECT_EQ(m.serial().errors(), std::vector<std::string>{"error: move beyond the soft limits"});
+  const std::vector<std::string> messages = {"warning: F clamped to 40000", "pos X:0 Y:15000 Z:500 E:3000"};
+  EXPECT_EQ(m.serial().messages(), messages);
+  EXPECT_DOUBLE_EQ(m.axis('X')->steps(), 1000);  // homed 1 mm off the switch
+  EXPECT_DOUBLE_EQ(m.axis('Y')->steps(), 16000);
+  EXPECT_DOUBLE_EQ(m.axis('Z')->steps(), 1500);
 }
 
 TEST(Examples, M16Demo) {
