@@ -11,6 +11,8 @@ enum class Protocol : uint8_t { grbl, marlin };
 
 #include AVRMOTION_BOARD_HEADER
 
+#include "axes/endstops.h"
+
 // What a board header may leave out. A board's own declaration wins:
 // `board::kHeater` finds the board's name first and looks into the namespaces
 // `board` uses only when the board has none (qualified lookup).
@@ -30,6 +32,12 @@ constexpr Protocol kProtocol = Protocol::grbl;
 // The direct controls MOVE, POS, WAIT, RELEASE, MODE (docs/protocol.md)
 // beside G-code; about 2 KB of flash.
 constexpr bool kCommands = true;
+// Endstops (firmware/axes/endstops.h): none, so no hard limits. kHoming
+// links the homing service (G28, firmware/services/homing.h) beside them;
+// kHomingSettings (one HomingAxis per endstop) is then the board's own.
+using Endstops = EndstopSet<AxisSet<>, false>;
+constexpr bool kHoming = false;
+constexpr HomingSettings<1> kHomingSettings = {};
 }  // namespace board_defaults
 namespace board {
 using namespace board_defaults;

@@ -19,6 +19,17 @@ struct HeaterWiring<true, Hw> {
 };
 using Heater = HeaterWiring<board::kHeater>;
 
+// An axis's entry with its endstop (firmware/axes/endstops.h), if it has one.
+constexpr am::AxisDescriptor with_endstop(am::AxisDescriptor d) {
+  using Endstops = board::Endstops;
+  const uint8_t bit = endstops_detail::Letter<board::Axes>::bit(d.name);
+  d.endstop = Endstops::Each::pin_of(bit);
+  if (d.endstop == am::kNoPin) return d;
+  if (Endstops::max_end & bit) d.option = uint8_t(d.option | am::kEndstopAtMax);
+  if (Endstops::closed_high) d.option = uint8_t(d.option | am::kEndstopClosedHigh);
+  return d;
+}
+
 template <typename Set>
 struct Describe;
 
@@ -26,13 +37,13 @@ template <typename... Axes>
 struct Describe<AxisSet<Axes...>> {
   static_assert(sizeof...(Axes) <= am::kMaxAxes, "the descriptor holds six axes");
   static constexpr am::BoardDescriptor make() {
-    return am::BoardDescriptor{{'A', 'M', 'B', '1'}, AVRMOTION_BOARD_NAME, AVRMOTION_MCU_NAME,
+    return am::BoardDescriptor{{'A', 'M', 'B', '2'}, AVRMOTION_BOARD_NAME, AVRMOTION_MCU_NAME,
                                F_CPU, board::kBaud, uint8_t(sizeof...(Axes)), Heater::pwm, Heater::adc, Heater::ok,
                                uint8_t((board::kGcode ? am::kProgramGcode : 0) |
                                        (board::kCommands ? am::kProgramCommands : 0) |
                                        (board::kRealtime ? am::kProgramRealtime : 0)),
                                {0, 0, 0},
-                               {Axes::descriptor()...}};
+                               {with_endstop(Axes::descriptor())...}};
   }
 };
 

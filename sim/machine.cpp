@@ -113,6 +113,11 @@ Machine::Machine(const std::string& elf_path)
   // A board with a heater has its thermistor plugged in, at room temperature
   // until a ThermalPlant drives it.
   if (board_.heater_pin != am::kNoPin) set_adc_millivolts(board_.heater_adc, thermistor_input_mv(ThermalParams(), 25));
+  for (uint8_t i = 0; i < board_.axis_count; ++i) {
+    const am::AxisDescriptor& d = board_.axes[i];
+    if (d.endstop != am::kNoPin)
+      hold_input(am::pin_port(d.endstop), am::pin_bit(d.endstop), (d.option & am::kEndstopClosedHigh) == 0);
+  }
 }
 
 Machine::~Machine() {
@@ -124,6 +129,7 @@ uint64_t Machine::cycles() const { return avr_->cycle; }
 
 size_t Machine::reset() {
   avr_reset(avr_);
+  reapply_held();
   for (const auto& again : after_reset_) again();
   return serial_->on_reset();
 }
@@ -313,6 +319,39 @@ const std::vector<PinEdge>& Machine::watch_pin(char port, uint8_t bit) {
 
 void Machine::set_input(char port, uint8_t bit, bool level) {
   avr_raise_irq(avr_io_getirq(avr_, AVR_IOCTL_IOPORT_GETIRQ(port), bit), level ? 1 : 0);
+}
+
+void Machine::hold_input(char port, uint8_t bit, bool level) {
+  auto& h = held_[port];
+  const uint8_t mask = uint8_t(1u << bit);
+  h.first = uint8_t(h.first | mask);
+  h.second = uint8_t(level ? h.second | mask : h.second & ~mask);
+  apply_held(port);
+  set_input(port, bit, level);
+}
+
+void Machine::apply_held(char port) {
+  const auto& h = held_.at(port);
+  avr_ioport_external_t e;
+  e.name = uint8_t(port);
+  e.mask = h.first;
+  e.value = h.second;
+  avr_ioctl(avr_, AVR_IOCTL_IOPORT_SET_EXTERNAL(port), &e);
+}
+
+void Machine::reapply_held() {
+  // A reset cleared the PIN registers but not the pins' last levels, and
+  // simavr filters a level raised again unchanged: raised as a change (the
+  // reset left every edge detector off).
+  for (const auto& h : held_) {
+    for (uint8_t bit = 0; bit < 8; ++bit) {
+      if (!(h.second.first & (1u << bit))) continue;
+      const uint32_t level = (h.second.second >> bit) & 1u;
+      avr_irq_t* irq = avr_io_getirq(avr_, AVR_IOCTL_IOPORT_GETIRQ(h.first), bit);
+      irq->value = level ^ 1u;
+      avr_raise_irq(irq, level);
+    }
+  }
 }
 
 void Machine::set_adc_millivolts(uint8_t channel, uint32_t mv) {

@@ -17,7 +17,8 @@
 //                      the firmware writes an OCR in a PWM mode and the value
 //                      changed (simavr's TIMER_IRQ_OUT_PWM0/1), cycle-stamped.
 // A board whose descriptor names a heater starts with its thermistor's ADC
-// input at 25 C (sim/thermal_plant.h drives it from a hot end instead).
+// input at 25 C (sim/thermal_plant.h drives it from a hot end instead), one
+// with endstops with every switch open (sim/endstops.h closes them).
 // run() always ends: when the stop condition holds, when the cycle budget is
 // spent (a hung image fails a test instead of hanging CI) or when the core
 // stops or crashes. A run in which simavr reported an error does not end
@@ -116,10 +117,21 @@ class Machine {
   // -1 for an image without a path.
   int starvations() const;
 
+  // Calls `on_change` at every change of a pin, after the harness's own
+  // decoders have seen it (an axis's position is already updated).
+  void listen_pin(char port, uint8_t bit, std::function<void(bool, uint64_t)> on_change) {
+    hook_pin(am::pin_code(port, bit), std::move(on_change));
+  }
   // Starts recording every change of a pin (port 'A'..'D', bit 0..7).
   const std::vector<PinEdge>& watch_pin(char port, uint8_t bit);
   // Drives an input pin from outside (a switch, an encoder, a step source).
   void set_input(char port, uint8_t bit, bool level);
+  // Holds an input pin at `level` as a switch wired to it does, whatever
+  // the firmware does with its pull-up, and through resets (simavr clears
+  // the PIN register on a reset but keeps the pin's last level, so a plain
+  // set_input() would read 0 afterwards). An endstop's pin is held open
+  // from construction (sim/endstops.h drives it from a position).
+  void hold_input(char port, uint8_t bit, bool level);
   // Puts `mv` millivolts on ADC input `channel` (0..7), as a sensor would.
   // The first call also sets AVCC, VCC and AREF to 5 V if nothing set them
   // (simavr otherwise converts against 3.3 V). simavr samples the input when
@@ -171,6 +183,9 @@ class Machine {
   std::map<int, uint64_t> isr_entry_;
   std::vector<std::unique_ptr<std::pair<Machine*, int>>> isr_hooks_;
   std::map<int, std::vector<PinEdge>> watched_;
+  std::map<char, std::pair<uint8_t, uint8_t>> held_;  // port: held pins' mask, levels
+  void apply_held(char port);
+  void reapply_held();
   struct PwmHook;
   static void on_pwm_irq(avr_irq_t* irq, uint32_t value, void* param);
   std::map<int, std::unique_ptr<PwmHook>> pwm_hooks_;

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "endstops.h"
 #include "machine.h"
 #include "plot.h"
 #include "progress.h"
@@ -48,6 +49,10 @@ void usage() {
                "  --thermal-fault NAME@S  from S seconds on: open, shorted (sensor), disconnected,\n"
                "                      stuck_on (heater); may be given more than once\n"
                "  --thermal-fan F@S   part fan at F (0..1) from S seconds on; more than once allowed\n"
+               "  a board with endstops (m32) has its switches at each axis's position 0 (docs/homing.md):\n"
+               "  --endstop A=STEPS   axis A's switch at STEPS instead; more than once allowed\n"
+               "  --endstop-bounce US each contact change bounces for US microseconds (default 0)\n"
+               "  --no-endstops       no switches: every endstop stays open\n"
                "exit: 0 ran to the end (--pty: the client closed, or SIGINT/SIGTERM), 2 bad usage or image, 3 budget spent, 4 CPU stopped,\n"
                "      5 simavr reported an error (a dropped event: the run is not valid)\n";
 }
@@ -80,6 +85,9 @@ int main(int argc, char** argv) {
   sim::ThermalParams thermal;
   std::vector<std::pair<double, sim::ThermalFault>> faults;
   std::vector<std::pair<double, double>> fans;
+  std::vector<std::pair<char, int64_t>> endstop_at;
+  sim::EndstopParams endstop_params;
+  bool no_endstops = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const auto value = [&]() -> std::string {
@@ -103,6 +111,21 @@ int main(int argc, char** argv) {
     else if (a == "--speed") speed_text = value();
     else if (a == "--linger") linger = std::atof(value().c_str()), linger_given = true;
     else if (a == "--thermal-initial") thermal.initial_c = std::atof(value().c_str());
+    else if (a == "--endstop") {
+      char axis;
+      int64_t steps;
+      if (!sim::parse_endstop_position(value(), axis, steps)) {
+        usage();
+        return 2;
+      }
+      endstop_at.push_back({axis, steps});
+    } else if (a == "--endstop-bounce") {
+      endstop_params.bounce_us = std::atof(value().c_str());
+      if (endstop_params.bounce_us < 0) {
+        usage();
+        return 2;
+      }
+    } else if (a == "--no-endstops") no_endstops = true;
     else if (a == "--thermal-fault" || a == "--thermal-fan") {
       const std::string v = value();
       std::string what;
@@ -154,6 +177,16 @@ int main(int argc, char** argv) {
       for (const auto& f : fans) plant->fan_at(f.first, f.second);
     } else if (!faults.empty() || !fans.empty()) {
       throw std::runtime_error("--thermal-fault/--thermal-fan: this board has no heater");
+    }
+    // The switches, wherever the axes go (and through every reset).
+    std::unique_ptr<sim::Endstops> switches;
+    bool has_endstops = false;
+    for (uint8_t i = 0; i < machine.board().axis_count; ++i) has_endstops |= machine.board().axes[i].endstop != am::kNoPin;
+    if (has_endstops && !no_endstops) {
+      switches.reset(new sim::Endstops(machine, endstop_params));
+      for (const auto& e : endstop_at) switches->set_position(e.first, e.second);
+    } else if (!endstop_at.empty() || endstop_params.bounce_us > 0) {
+      throw std::runtime_error("--endstop/--endstop-bounce: this board has no endstops (or --no-endstops)");
     }
     if (pty) {
       sim::PtyPort port(link);

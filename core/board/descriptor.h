@@ -29,10 +29,14 @@ struct AxisDescriptor {
   char name;              // 'X', 'Y', 'Z', 'E'
   AxisKind kind;
   uint8_t pins[4];
-  uint8_t option;
-  uint8_t reserved;
+  uint8_t option;         // bit 0 see kind; kEndstop* bits
+  uint8_t endstop;        // its endstop's pin, kNoPin if it has none
   uint32_t steps_per_m;   // full steps per metre of travel
 };
+
+// An axis's endstop (AxisDescriptor::option): at the axis's maximum end (else
+// its minimum); closed reads high (else low, a switch to ground).
+constexpr uint8_t kEndstopAtMax = 2, kEndstopClosedHigh = 4;
 
 constexpr uint8_t kMaxAxes = 6;
 
@@ -41,7 +45,7 @@ constexpr uint8_t kMaxAxes = 6;
 constexpr uint8_t kProgramGcode = 1, kProgramCommands = 2, kProgramRealtime = 4;
 
 struct BoardDescriptor {
-  char magic[4];          // "AMB1"
+  char magic[4];          // "AMB2"
   char board[12];         // NUL-terminated
   char mcu[12];           // simavr's part name, NUL-terminated
   uint32_t f_cpu;

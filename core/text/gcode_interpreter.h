@@ -48,6 +48,11 @@
 //     wait             M400: the answer waits until every move has ended
 //     set_mode         M350: mode[i] for every axis in `axes`
 //     program_end      M2/M30 (modes back to power-up, see below)
+//     home             G28: home the axes in `axes` (every axis that can
+//                      be homed when 0); the words' values are not used
+//                      and nothing changes here: the machine puts the
+//                      homed axes where they are with set_homed()
+//     unlock           M999: end an alarm (the machine's business)
 //     heater           M104 M105 M108 M109 M155 M301 M303: `heater` says
 //                      what (GcodeHeaterCommand, see Heater codes below)
 //     none             a line that only sets modes or F, or is empty
@@ -139,7 +144,8 @@ struct GcodeState {
 };
 
 enum class GcodeActionKind : uint8_t {
-  none, move, arc, dwell, set_position, report_position, enable, release, wait, set_mode, program_end, heater,
+  none, move, arc, dwell, set_position, report_position, enable, release, wait, set_mode, program_end, heater, home,
+  unlock,
 };
 
 // The highest target a heater code takes: Marlin's HEATER_0_MAXTEMP (275 C,
@@ -217,6 +223,21 @@ class GcodeInterpreter {
   void restore(const GcodeState<N>& state) { state_ = state; }
   const GcodeAxis& axis(uint8_t i) const { return axes_[i]; }
 
+  // Homing has put the axes in mask `axes` at machine positions steps[]
+  // (G28): no G92 offset is left on them and their program positions follow
+  // from the steps.
+  void set_homed(uint8_t axes, const int32_t (&steps)[N]) {
+    GcodeAxisState* a = state_.axis;
+    const GcodeAxis* ax = axes_;
+    const int32_t* s = steps;
+    for (uint8_t i = 0; i < N; ++i, axes = uint8_t(axes >> 1), ++a, ++ax, ++s) {
+      if (!(axes & 1)) continue;
+      a->steps = *s;
+      a->offset = 0;
+      steps_to_length(*s, ax->steps_per_m, a->coord);
+    }
+  }
+
   // Board axis index of an (upper-case) letter, kNoAxis if absent.
   uint8_t index_of(char letter) const {
     for (uint8_t i = 0; i < N; ++i)
@@ -282,9 +303,10 @@ GcodeError GcodeInterpreter<N, Arcs, Heater>::execute(const GcodeBlock& b, Gcode
   const GcodeCode stop = b.group(GcodeGroup::stop);
   const bool dwell = non_modal == GcodeCode::g4;
   const bool set_position = non_modal == GcodeCode::g92;
+  const bool home = non_modal == GcodeCode::g28;
   const bool set_mode = machine == GcodeCode::m350;
-  if ((set_position || set_mode) && motion != GcodeCode::none) return GcodeError::axis_conflict;
-  const bool move = axis_words && !set_position && !set_mode;
+  if ((set_position || set_mode || home) && motion != GcodeCode::none) return GcodeError::axis_conflict;
+  const bool move = axis_words && !set_position && !set_mode && !home;
   const uint8_t actions = uint8_t((non_modal != GcodeCode::none) + (machine != GcodeCode::none) +
                                   (stop != GcodeCode::none) + move);
   if (actions > 1) return GcodeError::multiple_actions;
@@ -324,6 +346,7 @@ GcodeError GcodeInterpreter<N, Arcs, Heater>::execute(const GcodeBlock& b, Gcode
     const char letter = ax->letter;
     if (!b.has(letter)) continue;
     named |= bit;
+    if (home) continue;
     const int32_t w = b.get(letter);
     if (set_mode) {
       const uint8_t mode = mode_bit(w);
@@ -357,12 +380,16 @@ GcodeError GcodeInterpreter<N, Arcs, Heater>::execute(const GcodeBlock& b, Gcode
     kind = GcodeActionKind::dwell;
   } else if (set_position) {
     kind = GcodeActionKind::set_position;
+  } else if (home) {
+    kind = GcodeActionKind::home;
+    named = 0;  // nothing to commit
   } else if (set_mode) {
     kind = GcodeActionKind::set_mode;
   } else if (machine != GcodeCode::none) {
     kind = machine == GcodeCode::m17    ? GcodeActionKind::enable
            : machine == GcodeCode::m114 ? GcodeActionKind::report_position
            : machine == GcodeCode::m400 ? GcodeActionKind::wait
+           : machine == GcodeCode::m999 ? GcodeActionKind::unlock
                                         : GcodeActionKind::release;
   } else if (stop != GcodeCode::none) {
     m.motion = Motion::rapid;

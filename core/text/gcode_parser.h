@@ -32,12 +32,12 @@
 //   Codes and groups (kept as GcodeCode per GcodeGroup in the block):
 //     motion    G0 G1 G2 G3         plane     G17 G18 G19
 //     distance  G90 G91             units     G20 G21
-//     feed mode G94                 non-modal G4 G92
+//     feed mode G94                 non-modal G4 G28 G92
 //     stop      M2 M30              extruder  M82 M83
-//     machine   M17 M18 M84 M114 M350, and the heater's M104 M105 M108
-//               M109 M155 M301 M303 (gcode_interpreter.h: heater codes)
+//     machine   M17 M18 M84 M114 M350 M999, and the heater's M104 M105
+//               M108 M109 M155 M301 M303 (gcode_interpreter.h: heater codes)
 //   Code numbers are whole numbers without a decimal point ("G01" is G1);
-//   anything else ("G28", "G1.0", "G92.1", "M106") is unsupported_code.
+//   anything else ("G30", "G1.0", "G92.1", "M106") is unsupported_code.
 //
 // Layering of Marlin line numbers and checksums: split_checksum(line, end)
 // checks and cuts off a trailing "*<0..255>" (the XOR of every byte before the
@@ -118,10 +118,10 @@ enum class GcodeCode : uint8_t {
   g90, g91,             // distance
   g20, g21,             // units
   g94,                  // feed mode
-  g4, g92,              // non-modal
+  g4, g28, g92,         // non-modal
   m2, m30,              // stop
   m82, m83,             // extruder
-  m17, m18, m84, m114, m350, m400,  // machine
+  m17, m18, m84, m114, m350, m400, m999,  // machine
   m104, m105, m108, m109, m155, m301, m303, m500,  // machine: the heater's (M500: its gains)
 };
 
@@ -188,6 +188,7 @@ inline GcodeCode code_of(char letter, int32_t number) {
   if (letter == 'G') {
     if (n <= 3) return GcodeCode(uint8_t(GcodeCode::g0) + n);
     if (n == 4) return GcodeCode::g4;
+    if (n == 28) return GcodeCode::g28;
     if (n >= 17 && n <= 19) return GcodeCode(uint8_t(GcodeCode::g17) + (n - 17));
     if (n == 20 || n == 21) return GcodeCode(uint8_t(GcodeCode::g20) + (n - 20));
     if (n == 90 || n == 91) return GcodeCode(uint8_t(GcodeCode::g90) + (n - 90));
@@ -203,6 +204,7 @@ inline GcodeCode code_of(char letter, int32_t number) {
   if (n == 114) return GcodeCode::m114;
   if (n == 350) return GcodeCode::m350;
   if (n == 400) return GcodeCode::m400;
+  if (n == 999) return GcodeCode::m999;
   if (n == 104 || n == 105) return GcodeCode(uint8_t(GcodeCode::m104) + (n - 104));
   if (n == 108 || n == 109) return GcodeCode(uint8_t(GcodeCode::m108) + (n - 108));
   if (n == 155) return GcodeCode::m155;

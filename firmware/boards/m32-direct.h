@@ -1,6 +1,6 @@
 // Board: ATmega32 printer/CNC controller (seed-002) with the direct controls:
 // MOVE, POS, WAIT, RELEASE, MODE (docs/protocol.md) beside G-code, grbl
-// style, no arcs, no realtime bytes. The image for bringing up motors and
+// style, no arcs, no realtime bytes; the printer's endstops and homing. The image for bringing up motors and
 // drivers (a move in steps at a rate and an acceleration of its own) and the
 // one the step engine's figures are measured on (docs/benchmarks.md,
 // tests/sim/test_invariants.cpp). Wiring: firmware/boards/common/m32_wiring.h.
@@ -12,7 +12,12 @@ namespace board {
 
 using namespace m32_wiring;
 
-using Claims = hal::ClaimSet<kStepClock, kClock, hal::claim::uart, Axes::Claims::all>;
+// The printer's endstops and homing (m32_wiring.h, docs/homing.md).
+using Endstops = EndstopWiring;
+constexpr bool kHoming = true;
+constexpr HomingSettings<3> kHomingSettings = kPrinterHoming;
+
+using Claims = hal::ClaimSet<kStepClock, kClock, hal::claim::uart, Axes::Claims::all, Endstops::claims>;
 
 constexpr bool kGcode = true;  // the cnc program speaks G-code (docs/gcode.md)
 constexpr bool kArcs = false;

@@ -21,7 +21,13 @@ struct Heater {
   static constexpr uint32_t claims = Pwm::claims | hal::claim::adc;
 };
 
-using Claims = hal::ClaimSet<kStepClock, kClock, hal::claim::uart, Axes::Claims::all, Heater::claims>;
+// Hard limits, homing (G28) and soft limits on the min endstops
+// (docs/homing.md, m32_wiring.h).
+using Endstops = EndstopWiring;
+constexpr bool kHoming = true;
+constexpr HomingSettings<3> kHomingSettings = kPrinterHoming;
+
+using Claims = hal::ClaimSet<kStepClock, kClock, hal::claim::uart, Axes::Claims::all, Heater::claims, Endstops::claims>;
 
 constexpr bool kGcode = true;  // the cnc program speaks G-code (docs/gcode.md)
 constexpr Protocol kProtocol = Protocol::marlin;  // printer hosts: printcore, OctoPrint (docs/protocol.md)

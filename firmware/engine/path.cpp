@@ -4,6 +4,7 @@
 #include "../../core/motion/path_planner.h"
 #include "../../core/motion/trapezoid.h"
 #include "clock.h"
+#include "limits.h"
 #include "odometer.h"
 #include "step_engine.h"
 
@@ -23,6 +24,9 @@ constexpr float kJunctionDeviationMm = 0.01f;
 // With a feed hold, cruise runs of under 2^15 ticks (2 ms at 16 MHz): the
 // stop starts after what the engine has queued, at most kQueueSize of them.
 constexpr uint8_t kHoldCruiseHalvings = 2;
+// Direct moves come from the MOVE command and from homing; a board with
+// neither links none.
+constexpr bool kDirectMoves = board::kCommands || board::kHoming;
 
 constexpr uint32_t highest_rate(uint8_t i = 0, uint32_t most = board::kMaxStepRate) {
   return i == kAxes ? most
@@ -119,7 +123,7 @@ void begin(const am::TrapezoidBlock& b, const planner::Steps& steps) {
 // taken that could not start).
 bool take() {
   if (!engine::block_available()) return false;
-  if (board::kCommands && direct_waiting) {
+  if (kDirectMoves && direct_waiting) {
     begin(direct, direct_move.steps);
     direct_waiting = false;
     return true;
@@ -202,7 +206,22 @@ void release() {
 }
 void start() { starting = true; }
 
+namespace {
+
+// The step interrupt stopped at an endstop: every block and dwell still to
+// come is dropped with the engine's queue (limits.h says what that means).
+void drop_everything() {
+  if (board::kGcode) plan().clear();
+  generating = direct_waiting = exit_moving = starting = draining = engine_was_busy = false;
+  dwell_ms = 0;
+  engine::clear_trip();
+  limits::tripped();
+}
+
+}  // namespace
+
 void pump() {
+  if (board::Endstops::count && engine::stopped_at_endstop()) drop_everything();
   if (engine_was_busy && !engine::busy() && (generating || exit_moving)) ++starvations;
   for (;;) {
     if (engine::queue_full()) break;

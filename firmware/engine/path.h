@@ -31,6 +31,9 @@
 //   handed to the engine; asking it is waiting for that, so while it is false
 //   pump() takes every block at once. at_rest() is handed_over() and the
 //   engine stopped: what a command that needs the motion ended waits for.
+//   When the step interrupt has stopped at an endstop (a hard limit or a
+//   homing move's switch), pump() drops every block, direct move and dwell
+//   not yet run and tells limits::tripped().
 //   `starvations` (in path.cpp; the simulator's report reads it) counts the
 //   times the engine ran dry while a block still had segments to queue or
 //   ended at speed: the path fell behind the motion.

@@ -1,5 +1,8 @@
 #include "planner.h"
 
+#include <avr/pgmspace.h>
+
+#include "limits.h"
 #include "odometer.h"
 
 namespace planner {
@@ -41,6 +44,7 @@ uint32_t dominant_count(const Steps& steps) {
 }
 
 Refusal check(const Move& move) {
+  if (limits::alarm()) return Refusal::alarm;
   const uint8_t mask = mask_of(move.steps);
   if (mask == 0) return Refusal::nothing_to_do;
   // The timer-pulsed axis's edge is armed one period ahead, before the
@@ -54,7 +58,14 @@ Refusal check(const Move& move) {
       if (end < -int64_t(0x80000000) || end > int64_t(0x7FFFFFFF)) return Refusal::position_range;
     }
   }
-  return Refusal::none;
+  return limits::kSwitches && limits::outside(move) ? Refusal::soft_limit : Refusal::none;
+}
+
+const char* refusal_text(Refusal r) {
+  return r == Refusal::position_range         ? PSTR("move would leave the position range")
+         : r == Refusal::timer_axis_not_alone ? PSTR("the hardware-timed axis moves alone")
+         : r == Refusal::alarm                ? PSTR("alarm (hard limit or homing failed): M999 unlocks")
+                                              : PSTR("move beyond the soft limits");
 }
 
 RampError check_ramp(const Ramp& ramp) {
@@ -97,6 +108,8 @@ void count(const Move& move, bool at_rest) {
 }
 
 int32_t position(uint8_t axis) { return positions[axis]; }
+
+void set_position(uint8_t axis, int32_t units) { positions[axis] = units; }
 
 void positions_now(int32_t (&units)[board::Axes::count]) {
   if (!board::kOdometer) {

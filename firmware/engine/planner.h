@@ -36,8 +36,12 @@ struct Ramp {
   uint32_t accel;
 };
 
-enum class Refusal : uint8_t { none, nothing_to_do, position_range, timer_axis_not_alone };
+// alarm: a hard limit or a failed homing locked the motion; soft_limit: a
+// homed axis would leave its travel (firmware/engine/limits.h).
+enum class Refusal : uint8_t { none, nothing_to_do, position_range, timer_axis_not_alone, alarm, soft_limit };
 Refusal check(const Move& move);
+// The error text of a refusal from position_range on (in flash).
+const char* refusal_text(Refusal r);
 
 enum class RampError : uint8_t { none, zero_speed, zero_accel, rate_above_tick, accel_too_low };
 RampError check_ramp(const Ramp& ramp);
@@ -54,6 +58,8 @@ uint8_t dirs_of(const Steps& steps);
 
 void count(const Move& move, bool at_rest);
 int32_t position(uint8_t axis);
+// Homing: the axis is at `units` (nothing moves).
+void set_position(uint8_t axis, int32_t units);
 // Where the motors are now, in the same units, while they move: position()
 // less the steps counted but not yet made (firmware/engine/odometer.h), one
 // instant for every axis. At rest it is position(). A coil axis's

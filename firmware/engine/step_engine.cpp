@@ -56,6 +56,12 @@ namespace engine {
 namespace {
 
 volatile bool running;
+// The step interrupt stopped at an endstop (hard limit, homing): the queue
+// stays as it was until clear_trip().
+volatile bool tripped;
+// The pins and edge latches of the endstops the current segment runs
+// toward (board::Endstops::watch): each step event of it first checks them.
+uint8_t endstop_watch, endstop_latches;
 
 // The rest of the segment being executed, copied out of the queue so the
 // C handler reads fixed addresses instead of indexing the ring.
@@ -110,7 +116,7 @@ inline void track_next(const am::StepSegment& s) {
 // sets its directions. Directions change only where a move starts from rest,
 // whose first interval is long, so setting them after the period has been
 // programmed still leaves the drivers their set-up time.
-inline void load_front(const am::StepSegment& s) {
+__attribute__((noinline)) void load_front(const am::StepSegment& s) {
   step_coordinated = (s.axes & (s.axes - 1)) != 0;
   if (step_coordinated) {
     running_block = s.block;
@@ -125,6 +131,10 @@ inline void load_front(const am::StepSegment& s) {
   step_dirs = s.dirs;
   step_fast = fast_eligible(s) ? (s.count == 1 ? 2 : 1) : 0;
   board::Axes::set_direction(s.axes, s.dirs);
+  if (board::Endstops::count) {
+    endstop_watch = board::Endstops::watch(s.axes, s.dirs);
+    endstop_latches = board::Endstops::watch_latches(s.axes, s.dirs);
+  }
   track_next(s);
 }
 
@@ -139,7 +149,7 @@ inline void stop_engine() {
 
 // The current segment is done: on to the next one, programming its first
 // period before anything else, or stop if there is none.
-inline void next_segment() {
+__attribute__((noinline)) void next_segment() {
   const am::StepSegment* s = step_queue.pop_and_front();
   if (!s) {
     stop_engine();
@@ -177,7 +187,14 @@ Dda* begin_block(uint8_t& serial) {
 
 bool busy() { return running || !step_queue.empty(); }
 
-Progress progress() {
+bool stopped_at_endstop() { return tripped; }
+
+void clear_trip() {
+  while (!step_queue.empty()) step_queue.pop();
+  tripped = false;
+}
+
+__attribute__((optimize("Os"))) Progress progress() {
   // No lock: the Uno's 160 kHz fast path has no cycles to spare for one.
   // Read again when a segment ended or step_remaining changed meanwhile.
   for (;;) {
@@ -195,7 +212,8 @@ const am::StepSegment& segment(uint8_t index) { return *step_queue.slot(index); 
 
 const Dda& block(uint8_t serial) { return blocks[serial & (kBlockRing - 1)]; }
 
-bool push(am::StepSegment segment) {
+// Main-loop functions: built for size in this -O2 file.
+__attribute__((optimize("Os"))) bool push(am::StepSegment segment) {
   if (step_queue.full()) return false;
   // The fast path switches to a segment by itself only where it continues
   // the one before it: same (timer-pulsed) axis, same direction.
@@ -206,10 +224,10 @@ bool push(am::StepSegment segment) {
   return true;
 }
 
-void start() {
+__attribute__((optimize("Os"))) void start() {
   // The interrupt clears `running` only after it found the queue empty, so if
   // it is still set here the interrupt will see every segment pushed.
-  if (running || step_queue.empty()) return;
+  if (running || tripped || step_queue.empty()) return;
   running = true;
   const am::StepSegment& s = step_queue.front();
   const uint16_t first = first_period(s);
@@ -396,6 +414,13 @@ inline void step_event() {
       hal::step_timer::set_compare(step_compare);
       arm_if_step_period();
     }
+    return;
+  }
+  // A switch the segment runs toward has closed: this step is not made, and
+  // nothing moves until the main loop has seen it (clear_trip()).
+  if (board::Endstops::closed(endstop_watch, endstop_latches)) {
+    stop_engine();
+    tripped = true;
     return;
   }
   const uint8_t stepping = Coordinated ? dda->next().axes : axes;

@@ -8,6 +8,9 @@
 //   steps never wait for the planner); the engine stops itself when the queue
 //   runs dry. busy() is true while steps remain. The interrupt only pops segments; it never
 //   computes a ramp: that happens in the planner, outside interrupt context.
+//   On a board with endstops every step event first reads the switches its
+//   segment runs toward and stops the engine at a closed one (hard limits,
+//   homing: firmware/engine/limits.h).
 //
 // Why it is built this way
 //   The timer, not software, measures every interval: the compare match fires
@@ -63,6 +66,11 @@ void init();
 bool push(am::StepSegment segment);
 void start();
 bool busy();
+// A step event found a switch closed that its segment ran toward
+// (board::Endstops): the engine stopped before that step, its queue kept,
+// and start() does nothing until clear_trip() has dropped the queue.
+bool stopped_at_endstop();
+void clear_trip();
 bool queue_full();
 // Segments queued, the running one included.
 uint8_t queued();

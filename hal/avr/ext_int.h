@@ -1,4 +1,5 @@
-// External interrupt INT0 (the step input of the driver board).
+// External interrupts INT0 (the step input of the driver board) and INT0/
+// INT1 as edge latches (the endstops, firmware/axes/endstops.h).
 //
 // Contract
 //   enable_int0_rising() makes every rising edge on INT0 raise INT0_vect:
@@ -10,6 +11,11 @@
 //   Edge interrupts are latched in INTF0: an edge that arrives while the ISR
 //   (or any other) runs is kept and served afterwards, but a second edge
 //   before that is lost (one flag, no counter), which bounds the step rate.
+//
+//   latch_edges(line, rising) makes INTFn latch each rising (or falling)
+//   edge on INTn without raising any interrupt (INTn stays masked);
+//   latched() reads the flags, clear_latched(flags) clears them (one write).
+//   Flag masks are _BV(INTF0), _BV(INTF1) (latch_flag(line)).
 //
 //   ATmega16/32 keep the bits in MCUCR/GICR/GIFR; the ATmega328P in
 //   EICRA/EIMSK/EIFR with the same bit names.
@@ -38,6 +44,17 @@ inline void enable_int0_rising() {
 }
 
 inline void disable_int0() { HAL_EXTINT_MASK &= uint8_t(~_BV(INT0)); }
+
+constexpr uint8_t latch_flag(uint8_t line) { return line == 0 ? _BV(INTF0) : _BV(INTF1); }
+
+inline void latch_edges(uint8_t line, bool rising) {
+  const uint8_t shift = line == 0 ? ISC00 : ISC10;
+  HAL_EXTINT_SENSE = uint8_t((HAL_EXTINT_SENSE & ~(3u << shift)) | ((rising ? 3u : 2u) << shift));
+  HAL_EXTINT_FLAGS = latch_flag(line);
+}
+
+inline uint8_t latched() { return HAL_EXTINT_FLAGS; }
+inline void clear_latched(uint8_t flags) { HAL_EXTINT_FLAGS = flags; }
 
 }  // namespace ext_int
 }  // namespace hal

@@ -28,8 +28,9 @@ struct Pin {
 };
 
 // Several pins of one port changed in a single write, so they switch in the
-// same cycle (coil patterns). A read-modify-write of PORTx: atomic only with
-// interrupts off or when no interrupt writes the same port.
+// same cycle (coil patterns), or read at one instant (endstops). A write is
+// a read-modify-write of PORTx: atomic only with interrupts off or when no
+// interrupt writes the same port.
 template <char Port>
 struct PortBits {
   static constexpr uint8_t pin_reg = family::pin_io_address(Port);
@@ -39,6 +40,7 @@ struct PortBits {
     _SFR_IO8(pin_reg + 2) = uint8_t((_SFR_IO8(pin_reg + 2) & uint8_t(~mask)) | (bits & mask));
   }
   static void output(uint8_t mask) { _SFR_IO8(pin_reg + 1) |= mask; }
+  static uint8_t read() { return _SFR_IO8(pin_reg); }  // every pin's level, one IN
 };
 
 }  // namespace hal

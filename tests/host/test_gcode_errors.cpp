@@ -103,7 +103,7 @@ TEST(GcodeErrors, BadLineNumber) {
   check(GcodeError::bad_line_number, "N1.5 G1 X15");
 }
 TEST(GcodeErrors, UnsupportedCode) {
-  check(GcodeError::unsupported_code, "G28");
+  check(GcodeError::unsupported_code, "G30");
   check(GcodeError::unsupported_code, "M106 S200");
 }
 TEST(GcodeErrors, ModalGroupConflict) {

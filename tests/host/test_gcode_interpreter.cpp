@@ -176,6 +176,44 @@ TEST(GcodeInterpreter, G92SetsTheProgramPositionAndKeepsTheMachine) {
   EXPECT_EQ(g.state().axis[1].offset, -2032);
 }
 
+TEST(GcodeInterpreter, G28NamesTheAxesToHomeAndChangesNothing) {
+  Printer g(kPrinter);
+  ok(g, "G1 F3000 X10 Y-4 E5");
+  ok(g, "G92 X1");
+  const am::GcodeState<4> before = g.state();
+  Action a = ok(g, "G28");
+  EXPECT_EQ(a.kind, GcodeActionKind::home);
+  EXPECT_EQ(a.axes, 0);  // every axis that can be homed
+  a = ok(g, "G28 X0 Z7.5");  // the values are not used
+  EXPECT_EQ(a.kind, GcodeActionKind::home);
+  EXPECT_EQ(a.axes, 0x5);
+  for (uint8_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(g.state().axis[i].coord, before.axis[i].coord);
+    EXPECT_EQ(g.state().axis[i].offset, before.axis[i].offset);
+    EXPECT_EQ(g.state().axis[i].steps, before.axis[i].steps);
+  }
+  Action b;
+  EXPECT_EQ(run(g, "G28 G1 X0", b), GcodeError::axis_conflict);
+  EXPECT_EQ(run(g, "G28 X0 F100 P1", b), GcodeError::unused_word);
+  EXPECT_EQ(run(g, "G28 M17", b), GcodeError::multiple_actions);
+  EXPECT_EQ(run(g, "G28 X", b), GcodeError::bad_number);
+  EXPECT_EQ(run(g, "G28 A0", b), GcodeError::no_such_axis);
+  // The machine homed X and Z to machine steps 40 and -7: the G92 offset of
+  // X goes, the program positions follow the steps; Y and E keep theirs.
+  const int32_t homed[4] = {40, 999, -7, 999};
+  g.set_homed(0x5, homed);
+  EXPECT_EQ(g.state().axis[0].steps, 40);
+  EXPECT_EQ(g.state().axis[0].offset, 0);
+  EXPECT_EQ(g.state().axis[0].coord, 5000);    // 40 / 80 mm
+  EXPECT_EQ(g.state().axis[2].coord, -175);    // -7 / 400 mm
+  EXPECT_EQ(g.state().axis[1].steps, before.axis[1].steps);
+  EXPECT_EQ(g.state().axis[3].steps, before.axis[3].steps);
+  a = ok(g, "G1 X1");
+  EXPECT_EQ(a.target[0], 80);
+  a = ok(g, "M999");
+  EXPECT_EQ(a.kind, GcodeActionKind::unlock);
+}
+
 TEST(GcodeInterpreter, SequencesMatchADoubleModel) {
   // The model: per axis the program position in mm (double) and the G92
   // offset in steps; steps = round(coord * steps/mm) + offset, half away from

@@ -134,15 +134,15 @@ TEST(GcodeParser, CodesAndTheirGroups) {
 }
 
 TEST(GcodeParser, UnsupportedCodes) {
-  for (const char* line : {"G28", "G5", "G38", "G80", "G93", "G95", "G1.0", "G1.5", "G92.1", "G-1", "M0", "M3",
-                           "M106", "M110", "M220", "M999", "M350.5", "G214748"})
+  for (const char* line : {"G30", "G5", "G38", "G80", "G93", "G95", "G1.0", "G1.5", "G92.1", "G-1", "M0", "M3",
+                           "M106", "M110", "M220", "M998", "M350.5", "G214748"})
     EXPECT_EQ(parse(line), GcodeError::unsupported_code) << line;
   EXPECT_EQ(parse("G9999999999"), GcodeError::out_of_range);
 }
 
 TEST(GcodeParser, ModalGroupConflicts) {
-  for (const char* line : {"G0 G1 X1", "G1 G1 X1", "G2 G3 X1 I1", "G17 G18", "G90 G91", "G20 G21", "G4 P1 G92 X0",
-                           "M2 M30", "M82 M83", "M17 M18", "M114 M84", "M350 X1 M17"})
+  for (const char* line : {"G0 G1 X1", "G1 G1 X1", "G2 G3 X1 I1", "G17 G18", "G90 G91", "G20 G21", "G4 P1 G92 X0", "G28 G92 X0",
+                           "M2 M30", "M82 M83", "M17 M18", "M114 M84", "M350 X1 M17", "M999 M17"})
     EXPECT_EQ(parse(line), GcodeError::modal_group_conflict) << line;
 }
 
@@ -163,8 +163,8 @@ TEST(GcodeParser, WordErrors) {
 TEST(GcodeParser, FirstErrorFromTheLeftWins) {
   EXPECT_EQ(parse("G1 X1 X2 T1"), GcodeError::repeated_word);
   EXPECT_EQ(parse("G1 T1 X1 X2"), GcodeError::unsupported_word);
-  EXPECT_EQ(parse("G28 G0 G1"), GcodeError::unsupported_code);
-  EXPECT_EQ(parse("G0 G1 G28"), GcodeError::modal_group_conflict);
+  EXPECT_EQ(parse("G30 G0 G1"), GcodeError::unsupported_code);
+  EXPECT_EQ(parse("G0 G1 G30"), GcodeError::modal_group_conflict);
 }
 
 TEST(GcodeParser, EndPointerStopsTheParse) {

@@ -7,10 +7,12 @@
 #include "../../../hal/avr/uart.h"
 #include "../../axes/axis_modes.h"
 #include "../../board.h"
+#include "../../engine/limits.h"
 #include "../../engine/path.h"
 #include "../../engine/planner.h"
 #include "../../services/heater_codes.h"
 #include "pending.h"
+#include "../../services/homing.h"
 #include "reply.h"
 
 namespace gcode {
@@ -214,6 +216,24 @@ bool heater_code() {
   return true;
 }
 
+// G28 (only a board with homing has it): the homing service says what went
+// wrong; once homed, the program positions follow the machine's.
+bool home() {
+  const homing::Result r = homing::run(action.axes);
+  if (r == homing::Result::busy) return false;
+  pending = false;
+  if (r == homing::Result::failed) return true;
+  int32_t now[kAxes];
+  planner::positions_now(now);
+  interpreter().set_homed(action.axes ? action.axes : board::Endstops::axes, now);
+  reply::ok();
+  return true;
+}
+
+bool moves(am::GcodeActionKind kind) {
+  return kind == am::GcodeActionKind::move || kind == am::GcodeActionKind::arc || kind == am::GcodeActionKind::home;
+}
+
 }  // namespace
 
 bool claims(const char* line) {
@@ -249,13 +269,17 @@ bool accept(const char* line) {
   const char* refusal = nullptr;
   uint8_t refusal_code = reply::code::invalid_target;
   if (action.kind == am::GcodeActionKind::move) {
-    switch (planner::check(move_to(action.target))) {
-      case planner::Refusal::position_range: refusal = reply::kPositionRange; break;
-      case planner::Refusal::timer_axis_not_alone:
-        refusal = reply::kTimerAxisAlone;
-        refusal_code = reply::code::timer_axis_alone;
-        break;
-      default: break;
+    const planner::Refusal r = planner::check(move_to(action.target));
+    if (r > planner::Refusal::nothing_to_do) {
+      refusal = planner::refusal_text(r);
+      refusal_code = reply::refusal_code(r);
+    }
+  } else if (action.kind == am::GcodeActionKind::home) {
+    if (!board::kHoming || (action.axes & ~board::Endstops::axes)) {
+      refusal = PSTR("G28 homes only axes with an endstop");
+    } else if (limits::alarm()) {
+      refusal = planner::refusal_text(planner::Refusal::alarm);
+      refusal_code = reply::code::alarm_lock;
     }
   }
   if (board::kArcs && action.kind == am::GcodeActionKind::arc) {
@@ -300,6 +324,14 @@ void write_state() {
 bool execute() {
   if (!pending) return true;
   if (action.kind == am::GcodeActionKind::heater) return heater_code();
+  // An alarm raised since the line was accepted (a hard limit under the
+  // motion before it): it does not move.
+  if (limits::alarm() && moves(action.kind)) {
+    pending = arc_started = false;
+    reply::error(reply::code::alarm_lock, planner::refusal_text(planner::Refusal::alarm));
+    return true;
+  }
+  if (board::kHoming && action.kind == am::GcodeActionKind::home) return home();
   switch (action.kind) {
     case am::GcodeActionKind::move:
       if (!move()) return false;
@@ -313,6 +345,9 @@ bool execute() {
       break;
     case am::GcodeActionKind::report_position:
       report_position();
+      break;
+    case am::GcodeActionKind::unlock:
+      limits::unlock();
       break;
     case am::GcodeActionKind::enable:
       board::Axes::energise(uint8_t((1u << kAxes) - 1));

@@ -1,6 +1,6 @@
 // avrmotion firmware entry point: brings the board to its safe power-on state
 // (coils off, step lines low, drivers disabled, a heater off), greets the host
-// and serves the protocol (and a board's heater service) forever. All
+// and serves the protocol (and a board's heater and homing services) forever. All
 // timing-critical work happens in the step interrupt.
 #include <avr/interrupt.h>
 
@@ -12,6 +12,7 @@
 #include "../../engine/clock.h"
 #include "../../engine/step_engine.h"
 #include "../../services/heater.h"
+#include "../../services/homing.h"
 
 int main() {
   if (board::kRealtime) hal::watchdog::after_reset();  // a soft reset's watchdog off
@@ -27,5 +28,6 @@ int main() {
     protocol::poll();
     if (board::kRealtime) realtime::poll();
     if (board::kHeater) heater::poll();
+    if (board::kHoming) homing::poll();
   }
 }

@@ -115,15 +115,11 @@ bool execute(const am::Command& c) {
         move.steps[axis] = c.axis_steps[k];
       }
       if (!path::handed_over() || !path::ready_for(move)) return false;
-      switch (planner::check(move)) {
+      const planner::Refusal refusal = planner::check(move);
+      switch (refusal) {
         case planner::Refusal::none: break;
         case planner::Refusal::nothing_to_do: ok(); return true;
-        case planner::Refusal::position_range:
-          error(code::invalid_target, reply::kPositionRange);
-          return true;
-        case planner::Refusal::timer_axis_not_alone:
-          error(code::timer_axis_alone, reply::kTimerAxisAlone);
-          return true;
+        default: error(reply::refusal_code(refusal), planner::refusal_text(refusal)); return true;
       }
       planner::Ramp ramp{(c.given & am::kGivenRate) ? c.rate : board::kDefaultRate,
                          (c.given & am::kGivenAccel) ? c.accel : board::kDefaultAccel};

@@ -4,8 +4,12 @@
 
 namespace reply {
 
-const char kPositionRange[] PROGMEM = "move would leave the position range";
-const char kTimerAxisAlone[] PROGMEM = "the hardware-timed axis moves alone";
+uint8_t refusal_code(planner::Refusal r) {
+  return r == planner::Refusal::timer_axis_not_alone ? code::timer_axis_alone
+         : r == planner::Refusal::alarm              ? code::alarm_lock
+         : r == planner::Refusal::soft_limit         ? code::soft_limit
+                                                     : code::invalid_target;
+}
 
 void ok() { hal::uart::write_P(PSTR("ok\n")); }
 

@@ -5,12 +5,13 @@
 //   Marlin  `ok`, or `Error:<reason>` and `ok` (Marlin acknowledges every
 //           line; the host's flow control waits for the `ok`).
 // Info lines (warnings, reports) are `[MSG:...]` or `echo:...`: info_begin()
-// and info_end() frame them.
+// and info_end() frame them. And the alarm line.
 #pragma once
 #include <avr/pgmspace.h>
 
 #include "../../../hal/avr/uart.h"
 #include "../../board.h"
+#include "../../engine/planner.h"
 
 namespace reply {
 
@@ -23,18 +24,18 @@ namespace code {
 constexpr uint8_t expected_letter = 1, bad_number = 2, bad_system_command = 3, line_overflow = 11,
                   unsupported = 20, modal_group = 21, undefined_feed = 22, axis_conflict = 24,
                   repeated_word = 25, no_axis_words = 26, bad_line_number = 27, value_missing = 28,
-                  invalid_target = 33, arc_radius = 34, no_offsets = 35, unused_words = 36;
+                  invalid_target = 33, arc_radius = 34, no_offsets = 35, unused_words = 36, alarm_lock = 9;
 // avrmotion's own
 constexpr uint8_t out_of_range = 100, comment_open = 101, several_actions = 102, arc_mixed = 103,
                   bad_mode = 104, no_modes = 105, mode_unavailable = 106, heater = 107,
                   move_too_long = 108, timer_axis_alone = 109, zero_speed = 110, zero_accel = 111,
                   rate_above_tick = 112, accel_too_low = 113, bad_byte = 114, overrun = 115,
-                  mode_one_axis = 116, arc_too_big = 117;
+                  mode_one_axis = 116, arc_too_big = 117, soft_limit = 118, homing_failed = 119;
 }  // namespace code
 
-// Texts the direct controls and G-code both answer with.
-extern const char kPositionRange[] PROGMEM;
-extern const char kTimerAxisAlone[] PROGMEM;
+// The number a refusal of planner::check() answers with (its text:
+// planner::refusal_text()).
+uint8_t refusal_code(planner::Refusal r);
 
 void ok();
 void error(uint8_t grbl_code, const char* progmem_reason);
@@ -48,6 +49,14 @@ void info_begin();
 void info_end();
 // `echo:<text>` or `[MSG:<text>]` as one line.
 void info_P(const char* progmem_text);
+
+// A line of its own, not an answer to any line: the machine has stopped
+// (a hard limit) and refuses motion until unlocked.
+inline void alarm(const char* progmem_reason) {
+  hal::uart::write_P(PSTR("ALARM: "));
+  hal::uart::write_P(progmem_reason);
+  hal::uart::write('\n');
+}
 
 // A position in steps, or for an axis counted in fractions of a full step,
 // in full steps with the decimals needed (1/64 -> 0.015625): "450", "-3.25".

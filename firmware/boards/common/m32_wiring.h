@@ -14,6 +14,7 @@
 #include "../../../hal/avr/claims.h"
 #include "../../../hal/avr/gpio.h"
 #include "../../axes/axis_set.h"
+#include "../../axes/endstops.h"
 #include "../../axes/step_dir_axis.h"
 
 namespace m32_wiring {
@@ -23,6 +24,19 @@ using Axes = AxisSet<StepDirAxis<'X', Pin<'C', 0>, Pin<'C', 1>, Pin<'B', 0>, tru
                      StepDirAxis<'Y', Pin<'C', 2>, Pin<'C', 3>, Pin<'B', 1>, true, 1000000>,
                      StepDirAxis<'Z', Pin<'C', 4>, Pin<'C', 5>, Pin<'B', 2>, true, 1000000>,
                      StepDirAxis<'E', Pin<'C', 6>, Pin<'C', 7>, Pin<'B', 3>, true, 1000000>>;
+
+// The min endstops of X, Y and Z (docs/homing.md): switches to ground on the
+// pins' pull-ups, closed reads low. PD2 and PD3 are INT0's and INT1's pins,
+// PD4 is OC1B's: reading a switch there claims them (a program that uses
+// them, m32.h, adds EndstopWiring::claims to its set).
+using EndstopWiring = EndstopSet<Axes, false, Endstop<'X', Pin<'D', 2>, hal::claim::int0>,
+                                 Endstop<'Y', Pin<'D', 3>, hal::claim::int1>, Endstop<'Z', Pin<'D', 4>, hal::claim::oc1b>>;
+// Homing on them: X and Y home at 25 mm/s and locate at 1 mm/s, Z at 4 and
+// 0.5 mm/s; 1 mm back-off and pull-off; after homing every axis is at 0 and
+// may go 200 mm (Z 180 mm) up from there: an i3-style printer.
+constexpr HomingSettings<3> kPrinterHoming = {{{25000, 1000, 1000, 1000, 0, 200000},
+                                               {25000, 1000, 1000, 1000, 0, 200000},
+                                               {4000, 500, 1000, 1000, 0, 180000}}};
 
 // Hardware claims (hal/avr/claims.h, checked when the image compiles): Timer1
 // is the step clock, the UART talks to the host, Timer0 is the time base
@@ -58,6 +72,7 @@ inline void init() {
   Pin<'A', 5>::input_pullup();
   Pin<'A', 6>::input_pullup();
   Pin<'A', 7>::input_pullup();
+  EndstopWiring::init();
   Axes::init();
 }
 

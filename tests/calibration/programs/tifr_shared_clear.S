@@ -1,4 +1,4 @@
-/* Fault Q: a write to TIFR clears only the flags written one.
+/* Fault R: a write to TIFR clears only the flags written one.
  * On the ATmega16/32 one TIFR holds the flags of Timer0, Timer1 and Timer2;
  * each flag "is cleared by writing a logic one to the flag" (datasheet,
  * TIFR), so writing 1 << OCF1A, as the step engine does when it stops
