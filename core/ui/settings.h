@@ -1,0 +1,105 @@
+// The lathe's settings: what the operator sets once per machine, stored in
+// the EEPROM as one checked block.
+//
+// Contract
+//   Settings holds one uint32_t per field (kField*), each within the field's
+//   [min, max] (field()), and `check`, a Fletcher-16 sum over the values
+//   started from kSettingsVersion, so a block written by another layout, a
+//   half-written block or erased cells (0xFF) never pass. load_settings()
+//   takes a block read from the EEPROM: valid -> true and it is used as it
+//   is; otherwise -> false and the defaults (the seed's machine: 40-slot
+//   spindle disc, 3.175 mm leadscrew, 200-step motor) replace it.
+//   seal() recomputes the check before the block is written.
+//   machine() turns the settings into core/lathe's Machine; a lead in TPI
+//   (kFieldLeadTpi nonzero, 0.1 TPI) is used instead of the lead in mm.
+//
+// Why one uint32_t per field: one range check, one entry screen and one
+// table row serve every field; the block is 30 bytes.
+#pragma once
+#include <stdint.h>
+
+#include "../lathe/ratio.h"
+#include "flash.h"
+
+namespace am {
+namespace ui {
+
+enum : uint8_t {
+  kFieldSpindleCounts,  // spindle encoder counts per turn
+  kFieldLeadUm,         // leadscrew pitch, um
+  kFieldLeadTpi,        // leadscrew pitch in 0.1 TPI, 0 = use the mm value
+  kFieldMotorSteps,     // full steps per motor turn
+  kFieldMicrosteps,
+  kFieldReversed,       // 1: positive steps move the carriage the other way
+  kFieldRapid,          // retract and move rate, steps/s
+  kFieldCount
+};
+
+constexpr uint16_t kSettingsVersion = 0x4C31;  // 'L1'
+
+struct FieldSpec {
+  const char* label;  // 16 columns at most
+  uint32_t min, max, fallback;
+  uint8_t decimals;
+};
+
+struct Settings {
+  uint32_t value[kFieldCount];
+  uint16_t check;
+};
+
+inline const FieldSpec& field_row(uint8_t i) {
+  static const char kSpindle[] AM_FLASH = "Spindle cnt/rev";
+  static const char kLeadMm[] AM_FLASH = "Lead mm";
+  static const char kLeadTpi[] AM_FLASH = "Lead TPI (0=mm)";
+  static const char kSteps[] AM_FLASH = "Motor steps/rev";
+  static const char kMicro[] AM_FLASH = "Microsteps";
+  static const char kReversed[] AM_FLASH = "Reverse dir 0/1";
+  static const char kRapid[] AM_FLASH = "Rapid steps/s";
+  static const FieldSpec kFields[kFieldCount] AM_FLASH = {
+      {kSpindle, 1, 65535, 40, 0},    {kLeadMm, 100, 50000, 3175, 3}, {kLeadTpi, 0, 1000, 0, 1},
+      {kSteps, 1, 10000, 200, 0},     {kMicro, 1, 256, 1, 0},         {kReversed, 0, 1, 0, 0},
+      {kRapid, 100, 20000, 4000, 0},
+  };
+  return kFields[i];
+}
+
+inline FieldSpec field(uint8_t i) { return flash_copy(&field_row(i)); }
+
+inline uint16_t settings_check(const Settings& s) {
+  uint16_t a = uint8_t(kSettingsVersion), b = kSettingsVersion >> 8;
+  const uint8_t* p = reinterpret_cast<const uint8_t*>(s.value);
+  for (uint8_t i = 0; i < sizeof s.value; ++i) {
+    a = uint16_t((a + p[i]) % 255);
+    b = uint16_t((b + a) % 255);
+  }
+  return uint16_t(b << 8 | a);
+}
+
+inline void seal(Settings& s) { s.check = settings_check(s); }
+
+inline bool settings_valid(const Settings& s) {
+  if (s.check != settings_check(s)) return false;
+  for (uint8_t i = 0; i < kFieldCount; ++i) {
+    const FieldSpec f = field(i);
+    if (s.value[i] < f.min || s.value[i] > f.max) return false;
+  }
+  return true;
+}
+
+inline bool load_settings(Settings& s) {
+  if (settings_valid(s)) return true;
+  for (uint8_t i = 0; i < kFieldCount; ++i) s.value[i] = field(i).fallback;
+  seal(s);
+  return false;
+}
+
+inline Machine machine(const Settings& s) {
+  const uint32_t* v = s.value;
+  const Pitch lead = v[kFieldLeadTpi] ? Pitch{254000, v[kFieldLeadTpi]} : pitch_um(v[kFieldLeadUm]);
+  return {lead, stepper_counts(v[kFieldMotorSteps], v[kFieldMicrosteps]), uint16_t(v[kFieldSpindleCounts]),
+          v[kFieldReversed] != 0};
+}
+
+}  // namespace ui
+}  // namespace am

@@ -1,0 +1,392 @@
+// The operator workflow (core/ui/workflow.h) against a simulated lathe:
+// every screen of a threading session read back as text, the ratio and
+// length it engages checked against hand-reduced fractions and a 128-bit
+// reference, entry errors, the table pick, moves, the emergency stop and the
+// settings round trip.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <random>
+
+#include "ui_fake_lathe.h"
+
+FakeLathe::Motion FakeLathe::motion;
+bool FakeLathe::synced_now, FakeLathe::refuse;
+int32_t FakeLathe::pos, FakeLathe::target, FakeLathe::cut_start, FakeLathe::error;
+uint16_t FakeLathe::rpm_now, FakeLathe::now_ms;
+std::vector<FakeLathe::Engage> FakeLathe::engages;
+std::vector<std::pair<int32_t, uint32_t>> FakeLathe::moves;
+std::vector<am::ui::Settings> FakeLathe::saved;
+
+namespace {
+
+using am::ui::State;
+
+struct UiTest : ::testing::Test {
+  Ui ui;
+  void SetUp() override {
+    FakeLathe::reset();
+    ui.start(default_settings(), true);
+    ui.poll(0);
+  }
+  std::string r0() { return row(ui, 0); }
+  std::string r1() { return row(ui, 1); }
+};
+
+// Reduced p / q as a pair, by std::gcd (the reference, not core/lathe).
+std::pair<uint64_t, uint64_t> reduced(unsigned __int128 p, unsigned __int128 q) {
+  unsigned __int128 a = p, b = q;
+  while (b) {
+    const unsigned __int128 t = a % b;
+    a = b;
+    b = t;
+  }
+  return {uint64_t(p / a), uint64_t(q / a)};
+}
+
+TEST_F(UiTest, ThreadingSessionScreenByScreen) {
+  FakeLathe::rpm_now = 250;
+  wait_ms(ui, 100);  // the live line refreshes every 100 ms
+  EXPECT_EQ(r0(), "1Cut 2Move 3Set ");
+  EXPECT_EQ(r1(), " 250rpm Z   0.00");
+  press(ui, "1");
+  EXPECT_EQ(r0(), "1Feed 2Fine 3Thr");
+  press(ui, "3");
+  EXPECT_EQ(r0(), "Pitch mm A:TPI  ");
+  EXPECT_EQ(r1(), "_               ");
+  press(ui, "1#0");
+  EXPECT_EQ(r1(), "1.0_            ");
+  press(ui, "D");
+  EXPECT_EQ(r0(), "Thread hand     ");
+  EXPECT_EQ(r1(), "1Right 2Left    ");
+  press(ui, "1");
+  EXPECT_EQ(r0(), "Length mm 0=run ");
+  press(ui, "20D");
+  EXPECT_EQ(r0(), "OK to cut pass 1");
+  EXPECT_EQ(r1(), " 250rpm Z   0.00");
+  press(ui, "D");
+  // 1.00 mm on 200 steps per 3.175 mm, 40 counts per turn:
+  // 1000 x 200 / (3175 x 40) = 200/127; 20 mm = floor(20000 x 200 / 3175) = 1259 steps.
+  ASSERT_EQ(FakeLathe::engages.size(), 1u);
+  EXPECT_EQ(FakeLathe::engages[0].ratio.num, 200u);
+  EXPECT_EQ(FakeLathe::engages[0].ratio.den, 127u);
+  EXPECT_FALSE(FakeLathe::engages[0].reversed);
+  EXPECT_EQ(FakeLathe::engages[0].length, 1259);
+  ui.poll(0);
+  EXPECT_EQ(r0(), "Wait index      ");
+  FakeLathe::index();
+  FakeLathe::run(630);
+  wait_ms(ui, 100);
+  EXPECT_EQ(r0(), "Cut  err       0");
+  // 630 steps x 3175 / 200 = 10001.25 um
+  EXPECT_EQ(r1(), " 250rpm Z  10.00");
+  FakeLathe::run(10000);
+  EXPECT_EQ(FakeLathe::pos, 1259);
+  wait_ms(ui, 10);
+  EXPECT_EQ(r0(), "Done slip      0");
+  EXPECT_EQ(r1(), "OK=retract C=end");
+  press(ui, "D");
+  ASSERT_EQ(FakeLathe::moves.size(), 1u);
+  EXPECT_EQ(FakeLathe::moves[0].first, 0);
+  EXPECT_EQ(FakeLathe::moves[0].second, 4000u);  // the rapid rate's default
+  EXPECT_EQ(r0(), "Retract Z  19.98");            // 1259 x 3175 / 200 = 19986.6 um
+  EXPECT_EQ(r1(), "                ");
+  FakeLathe::run(1259 / 2);
+  wait_ms(ui, 100);
+  // 629 of 1259 steps back: floor(629 x 80 / 1259) = 39 columns of 80 lit
+  EXPECT_EQ(r1(), "55555554        ");
+  FakeLathe::run(1259);
+  wait_ms(ui, 10);
+  EXPECT_EQ(r0(), "OK to cut pass 2");
+  press(ui, "D");
+  ASSERT_EQ(FakeLathe::engages.size(), 2u);
+  EXPECT_EQ(FakeLathe::engages[1].ratio.num, 200u);
+  EXPECT_EQ(FakeLathe::engages[1].ratio.den, 127u);
+  EXPECT_EQ(FakeLathe::engages[1].length, 1259);
+}
+
+TEST_F(UiTest, LeftHandThirteenTpiFromTheKeys) {
+  press(ui, "13A");
+  EXPECT_EQ(r0(), "Pitch TPI A:mm  ");
+  press(ui, "13D2");
+  press(ui, "0D");  // length 0: until stopped
+  EXPECT_EQ(r0(), "OK to cut pass 1");
+  press(ui, "D");
+  // (25400 / 13) x 200 / (3175 x 40) = 40/13
+  ASSERT_EQ(FakeLathe::engages.size(), 1u);
+  EXPECT_EQ(FakeLathe::engages[0].ratio.num, 40u);
+  EXPECT_EQ(FakeLathe::engages[0].ratio.den, 13u);
+  EXPECT_TRUE(FakeLathe::engages[0].reversed);
+  EXPECT_EQ(FakeLathe::engages[0].length, 0);
+  FakeLathe::index();
+  FakeLathe::run(5000);
+  wait_ms(ui, 10);
+  EXPECT_EQ(ui.state(), State::cutting);  // runs until stopped
+  press(ui, "D");                          // the emergency stop
+  wait_ms(ui, 10);
+  EXPECT_EQ(r0(), "Done slip      0");
+  EXPECT_EQ(FakeLathe::pos, -5000);
+}
+
+TEST_F(UiTest, TablePickGivesTheRowsPitch) {
+  press(ui, "13B");
+  EXPECT_EQ(r0(), "ISO M1          ");
+  EXPECT_EQ(r1(), "0.250mm     1/60");
+  press(ui, "B");
+  EXPECT_EQ(r0(), "ISO fine M64    ");
+  EXPECT_EQ(r1(), "4.000mm    60/60");
+  press(ui, "AAAAAAAAAAAAAAA");
+  EXPECT_EQ(r0(), "ISO M10         ");
+  EXPECT_EQ(r1(), "1.500mm    15/60");
+  press(ui, "D1");
+  press(ui, "0D");
+  press(ui, "D");
+  ASSERT_EQ(FakeLathe::engages.size(), 1u);  // 1500 x 200 / 127000 = 300/127
+  EXPECT_EQ(FakeLathe::engages[0].ratio.num, 300u);
+  EXPECT_EQ(FakeLathe::engages[0].ratio.den, 127u);
+}
+
+TEST_F(UiTest, InchAndFeedTables) {
+  press(ui, "13AB");
+  EXPECT_EQ(r0(), "UNC 0.0730in    ");
+  EXPECT_EQ(r1(), "64.0tpi     1/88");
+  press(ui, "B");
+  EXPECT_EQ(r0(), "Inch            ");
+  EXPECT_EQ(r1(), "80.0tpi    88/88");
+  press(ui, "CC");  // table -> entry -> kind
+  EXPECT_EQ(r0(), "1Feed 2Fine 3Thr");
+  press(ui, "1B");
+  EXPECT_EQ(r0(), "Feed            ");
+  EXPECT_EQ(r1(), "0.020mm/rev 1/16");
+  press(ui, "AAD");
+  EXPECT_EQ(r0(), "Feed direction  ");
+  press(ui, "110D");
+  press(ui, "D");
+  // 40 um x 200 / (3175 x 40) = 8000 / 127000 = 8/127
+  ASSERT_EQ(FakeLathe::engages.size(), 1u);
+  EXPECT_EQ(FakeLathe::engages[0].ratio.num, 8u);
+  EXPECT_EQ(FakeLathe::engages[0].ratio.den, 127u);
+  EXPECT_EQ(FakeLathe::engages[0].length, 629);  // floor(10000 x 200 / 3175)
+}
+
+TEST_F(UiTest, FineFeedIsTheSeeds) {
+  press(ui, "122");
+  press(ui, "5D");
+  press(ui, "D");
+  ASSERT_EQ(FakeLathe::engages.size(), 1u);
+  EXPECT_EQ(FakeLathe::engages[0].ratio.num, 8u);  // 0.04 mm, as above
+  EXPECT_EQ(FakeLathe::engages[0].ratio.den, 127u);
+  EXPECT_TRUE(FakeLathe::engages[0].reversed);
+}
+
+TEST_F(UiTest, EntryErrorsSayWhatIsWrongAndGoBack) {
+  press(ui, "13");
+  press(ui, "D");
+  EXPECT_EQ(r0(), "Type a number   ");
+  wait_ms(ui, 1490);
+  EXPECT_EQ(ui.state(), State::message);
+  wait_ms(ui, 20);
+  EXPECT_EQ(r0(), "Pitch mm A:TPI  ");
+  press(ui, "0D");
+  EXPECT_EQ(r0(), "Out of range    ");
+  EXPECT_EQ(r1(), "0.010..50.000   ");
+  press(ui, "C");  // any key goes back, to the text as typed
+  EXPECT_EQ(r1(), "0_              ");
+  press(ui, "C1#2#D");
+  EXPECT_EQ(r0(), "Two points      ");
+  press(ui, "CCCCC1#2345D");
+  EXPECT_EQ(r0(), "Fewer decimals  ");
+  press(ui, "CCCCCCC99999999D");  // saturates, still out of range
+  EXPECT_EQ(r0(), "Out of range    ");
+  press(ui, "CCCCCCCCC");
+  EXPECT_EQ(r1(), "_               ");
+  press(ui, "12C");  // C deletes the last digit
+  EXPECT_EQ(r1(), "1_              ");
+  press(ui, "CC");   // then goes back
+  EXPECT_EQ(r0(), "1Feed 2Fine 3Thr");
+  EXPECT_TRUE(FakeLathe::engages.empty());
+}
+
+TEST_F(UiTest, RefusedCutAndMoveLeaveTheCarriageStill) {
+  FakeLathe::refuse = true;
+  press(ui, "13");
+  press(ui, "1D1");
+  press(ui, "5D");
+  press(ui, "D");
+  EXPECT_EQ(r0(), "Cut refused     ");
+  EXPECT_EQ(r1(), "too fast?       ");
+  wait_ms(ui, 1600);
+  EXPECT_EQ(r0(), "OK to cut pass 1");
+  press(ui, "C2");
+  press(ui, "5D");
+  EXPECT_EQ(r0(), "Move refused    ");
+  EXPECT_EQ(FakeLathe::pos, 0);
+  EXPECT_EQ(FakeLathe::motion, FakeLathe::idle);
+}
+
+TEST_F(UiTest, MoveWithSignAndProgressBar) {
+  press(ui, "2");
+  EXPECT_EQ(r0(), "Move mm *:sign  ");
+  press(ui, "1#5*");
+  EXPECT_EQ(r1(), "-1.5_           ");
+  press(ui, "**");
+  EXPECT_EQ(r1(), "-1.5_           ");
+  press(ui, "D");
+  ASSERT_EQ(FakeLathe::moves.size(), 1u);
+  EXPECT_EQ(FakeLathe::moves[0].first, -94);  // -floor(1500 x 200 / 3175)
+  FakeLathe::run(47);
+  wait_ms(ui, 100);
+  EXPECT_EQ(r0(), "Move    Z  -0.74");  // -47 x 3175 / 200 = -746.1 um
+  EXPECT_EQ(r1(), "55555555        ");  // 47 of 94: 40 of 80 columns
+  FakeLathe::run(46);
+  wait_ms(ui, 100);
+  EXPECT_EQ(r1(), "5555555555555554");  // 93 of 94: 79 columns
+  FakeLathe::run(10);
+  wait_ms(ui, 10);
+  EXPECT_EQ(ui.state(), State::menu);
+  EXPECT_EQ(FakeLathe::pos, -94);
+}
+
+TEST_F(UiTest, SettingsEditedValidatedAndSaved) {
+  press(ui, "3");
+  EXPECT_EQ(r0(), "Spindle cnt/rev ");
+  EXPECT_EQ(r1(), "40           1/7");
+  press(ui, "D600D");
+  EXPECT_EQ(r1(), "600          1/7");
+  press(ui, "A");
+  EXPECT_EQ(r0(), "Lead mm         ");
+  EXPECT_EQ(r1(), "3.175        2/7");
+  press(ui, "AAA");
+  EXPECT_EQ(r0(), "Microsteps      ");
+  press(ui, "D0D");
+  EXPECT_EQ(r0(), "Out of range    ");
+  EXPECT_EQ(r1(), "1..256          ");
+  press(ui, "C");
+  press(ui, "C8D");
+  EXPECT_EQ(r1(), "8            5/7");
+  EXPECT_TRUE(FakeLathe::saved.empty());
+  press(ui, "C");
+  EXPECT_EQ(r0(), "Settings saved  ");
+  ASSERT_EQ(FakeLathe::saved.size(), 1u);
+  am::ui::Settings s = FakeLathe::saved[0];
+  EXPECT_EQ(s.value[am::ui::kFieldSpindleCounts], 600u);
+  EXPECT_EQ(s.value[am::ui::kFieldMicrosteps], 8u);
+  EXPECT_TRUE(am::ui::load_settings(s));  // sealed: valid as written
+  // The next cut uses them: 1.00 mm x 1600 / (3175 x 600) = 1600000 / 1905000 = 320/381.
+  wait_ms(ui, 1600);
+  press(ui, "13");
+  press(ui, "1D1");
+  press(ui, "0D");
+  press(ui, "D");
+  ASSERT_EQ(FakeLathe::engages.size(), 1u);
+  EXPECT_EQ(FakeLathe::engages[0].ratio.num, 320u);
+  EXPECT_EQ(FakeLathe::engages[0].ratio.den, 381u);
+  // Unchanged settings are not written again.
+  press(ui, "C");
+  wait_ms(ui, 10);
+  press(ui, "C3C");
+  EXPECT_EQ(r0(), "1Cut 2Move 3Set ");
+  EXPECT_EQ(FakeLathe::saved.size(), 1u);
+}
+
+TEST_F(UiTest, ApproximatedRatioShowsItsError) {
+  am::ui::Settings s = default_settings();
+  s.value[am::ui::kFieldSpindleCounts] = 65521;  // prime: nothing cancels
+  s.value[am::ui::kFieldLeadUm] = 49999;
+  am::ui::seal(s);
+  ui.start(s, true);
+  press(ui, "13A");
+  press(ui, "199#9D1");
+  press(ui, "0D");
+  const am::GearRatio g =
+      am::gear_ratio(am::ui::machine(s), {am::Pitch{254000, 1999}, 1, am::Hand::right});
+  ASSERT_EQ(g.status, am::RatioStatus::approximated);
+  const int32_t nm = g.error_pm / 1000;
+  char um[16];
+  std::snprintf(um, sizeof um, "%s%d.%03d", nm < 0 ? "-" : "", std::abs(nm) / 1000, std::abs(nm) % 1000);
+  char want[32];
+  std::snprintf(want, sizeof want, "err%8sum/r ", um);
+  EXPECT_EQ(r1(), std::string(want)) << g.error_pm;
+  press(ui, "D");
+  ASSERT_EQ(FakeLathe::engages.size(), 1u);
+  EXPECT_EQ(FakeLathe::engages[0].ratio.num, g.ratio.num);
+  EXPECT_EQ(FakeLathe::engages[0].ratio.den, g.ratio.den);
+  EXPECT_LE(g.ratio.den, am::kMaxDen);
+}
+
+TEST_F(UiTest, InvalidSettingsAtStartSayDefaults) {
+  am::ui::Settings s;
+  std::memset(&s, 0xFF, sizeof s);  // erased EEPROM
+  const bool ok = am::ui::load_settings(s);
+  EXPECT_FALSE(ok);
+  ui.start(s, ok);
+  ui.poll(0);
+  EXPECT_EQ(r0(), "Settings reset  ");
+  EXPECT_EQ(r1(), "to defaults     ");
+  wait_ms(ui, 1600);
+  EXPECT_EQ(r0(), "1Cut 2Move 3Set ");
+  EXPECT_EQ(ui.settings().value[am::ui::kFieldSpindleCounts], 40u);
+}
+
+// Typed metric pitches over the whole range, with random hands and lengths
+// on random machines: the engaged ratio is the hand-reduced fraction and the
+// length floor(um x counts / lead), from 128-bit references.
+TEST_F(UiTest, TypedPitchesAndLengthsSweep) {
+  std::mt19937 rng(11);
+  for (int n = 0; n < 400; ++n) {
+    am::ui::Settings s = default_settings();
+    const uint32_t counts = 1 + rng() % 4096, steps = 1 + rng() % 400, micro = 1 + rng() % 32;
+    const uint32_t lead = 100 + rng() % 49901;
+    s.value[am::ui::kFieldSpindleCounts] = counts;
+    s.value[am::ui::kFieldMotorSteps] = steps;
+    s.value[am::ui::kFieldMicrosteps] = micro;
+    s.value[am::ui::kFieldLeadUm] = lead;
+    am::ui::seal(s);
+    FakeLathe::reset();
+    ui.start(s, true);
+    const uint32_t pitch = 10 + rng() % 49991;      // um
+    const uint32_t length = rng() % 200001;         // 0.01 mm
+    char keys[64];
+    std::snprintf(keys, sizeof keys, "13%u#%03uD1%u#%02uD", pitch / 1000, pitch % 1000, length / 100, length % 100);
+    press(ui, keys);
+    ASSERT_EQ(ui.state(), State::ready) << keys;
+    press(ui, "D");
+    ASSERT_EQ(FakeLathe::engages.size(), 1u) << keys;
+    const auto want = reduced((unsigned __int128)pitch * steps * micro, (unsigned __int128)lead * counts);
+    EXPECT_EQ(FakeLathe::engages[0].ratio.num, want.first) << keys;
+    EXPECT_EQ(FakeLathe::engages[0].ratio.den, want.second) << keys;
+    const unsigned __int128 len_steps = (unsigned __int128)length * 10 * steps * micro / lead;
+    EXPECT_EQ(FakeLathe::engages[0].length, int32_t(len_steps)) << keys;
+  }
+}
+
+// The live line's Z: floor(|steps| x lead / counts) um, shown in 0.01 mm,
+// for positions across the int32 range on random machines.
+TEST_F(UiTest, LivePositionSweep) {
+  std::mt19937 rng(12);
+  for (int n = 0; n < 300; ++n) {
+    am::ui::Settings s = default_settings();
+    const uint32_t steps = 1 + rng() % 10000, micro = 1 + rng() % 256, lead = 100 + rng() % 49901;
+    s.value[am::ui::kFieldMotorSteps] = steps;
+    s.value[am::ui::kFieldMicrosteps] = micro;
+    s.value[am::ui::kFieldLeadUm] = lead;
+    am::ui::seal(s);
+    ui.start(s, true);
+    FakeLathe::pos = int32_t(rng() % 2000001) - 1000000;
+    FakeLathe::rpm_now = uint16_t(rng() % 10000);
+    wait_ms(ui, 100);
+    const uint64_t mag = uint64_t(std::abs(int64_t(FakeLathe::pos))) * lead / (uint64_t(steps) * micro) / 10;
+    char want[32];
+    char z[32];
+    std::snprintf(z, sizeof z, "%s%llu.%02llu", FakeLathe::pos < 0 && mag ? "-" : "", (unsigned long long)(mag / 100),
+                  (unsigned long long)(mag % 100));
+    if (std::strlen(z) > 7) std::snprintf(z, sizeof z, "*");
+    std::snprintf(want, sizeof want, "%4urpm Z%7s", FakeLathe::rpm_now, z);
+    if (z[0] == '*') std::snprintf(want, sizeof want, "%4urpm Z*      ", FakeLathe::rpm_now);
+    EXPECT_EQ(r1(), std::string(want)) << FakeLathe::pos;
+  }
+}
+
+}  // namespace
