@@ -14,6 +14,9 @@ struct Heater;  // a heater's wiring (firmware/boards/m32.h), only with kHeater
 // counts where the motors are while they move. Without it, where the
 // queued motion ends (Marlin's logical position).
 constexpr bool kOdometer = true;
+// The lathe program's operator panel (firmware/apps/lathe/operator.h) in
+// place of its UART front end.
+constexpr bool kOperatorPanel = false;
 }  // namespace board_defaults
 namespace board {
 using namespace board_defaults;

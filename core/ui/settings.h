@@ -7,11 +7,13 @@
 //   started from kSettingsVersion, so a block written by another layout, a
 //   half-written block or erased cells (0xFF) never pass. load_settings()
 //   takes a block read from the EEPROM: valid -> true and it is used as it
-//   is; otherwise -> false and the defaults (the seed's machine: 40-slot
-//   spindle disc, 3.175 mm leadscrew, 200-step motor) replace it.
+//   is; otherwise -> false and `defaults` (the board's machine: the
+//   firmware builds them from its board header) replace it.
 //   seal() recomputes the check before the block is written.
-//   machine() turns the settings into core/lathe's Machine; a lead in TPI
-//   (kFieldLeadTpi nonzero, 0.1 TPI) is used instead of the lead in mm.
+//   machine() turns the settings into core/lathe's Machine: spindle counts
+//   per turn = encoder lines, x 4 for a quadrature encoder (both edges of
+//   both channels); a lead in TPI (kFieldLeadTpi nonzero, 0.1 TPI) is used
+//   instead of the lead in mm.
 //
 // Why one uint32_t per field: one range check, one entry screen and one
 // table row serve every field; the block is 30 bytes.
@@ -25,7 +27,8 @@ namespace am {
 namespace ui {
 
 enum : uint8_t {
-  kFieldSpindleCounts,  // spindle encoder counts per turn
+  kFieldEncoderLines,   // spindle encoder lines (slots) per turn
+  kFieldQuadrature,     // 1: quadrature, counted x 4; 0: one channel
   kFieldLeadUm,         // leadscrew pitch, um
   kFieldLeadTpi,        // leadscrew pitch in 0.1 TPI, 0 = use the mm value
   kFieldMotorSteps,     // full steps per motor turn
@@ -35,11 +38,15 @@ enum : uint8_t {
   kFieldCount
 };
 
-constexpr uint16_t kSettingsVersion = 0x4C31;  // 'L1'
+constexpr uint16_t kSettingsVersion = 0x4C32;  // 'L2'
+constexpr uint32_t kMaxLines = 16383;  // x 4 still below 2^16 counts per turn
 
+// A number the operator types: its prompt (16 columns at most), range and
+// decimals (the value is kept x 10^decimals). Settings fields and the
+// workflow's entries (workflow.h) share it.
 struct FieldSpec {
-  const char* label;  // 16 columns at most
-  uint32_t min, max, fallback;
+  const char* label;
+  int32_t min, max;
   uint8_t decimals;
 };
 
@@ -49,7 +56,8 @@ struct Settings {
 };
 
 inline const FieldSpec& field_row(uint8_t i) {
-  static const char kSpindle[] AM_FLASH = "Spindle cnt/rev";
+  static const char kLines[] AM_FLASH = "Encoder lines";
+  static const char kQuad[] AM_FLASH = "Quadrature 0/1";
   static const char kLeadMm[] AM_FLASH = "Lead mm";
   static const char kLeadTpi[] AM_FLASH = "Lead TPI (0=mm)";
   static const char kSteps[] AM_FLASH = "Motor steps/rev";
@@ -57,9 +65,8 @@ inline const FieldSpec& field_row(uint8_t i) {
   static const char kReversed[] AM_FLASH = "Reverse dir 0/1";
   static const char kRapid[] AM_FLASH = "Rapid steps/s";
   static const FieldSpec kFields[kFieldCount] AM_FLASH = {
-      {kSpindle, 1, 65535, 40, 0},    {kLeadMm, 100, 50000, 3175, 3}, {kLeadTpi, 0, 1000, 0, 1},
-      {kSteps, 1, 10000, 200, 0},     {kMicro, 1, 256, 1, 0},         {kReversed, 0, 1, 0, 0},
-      {kRapid, 100, 20000, 4000, 0},
+      {kLines, 1, kMaxLines, 0}, {kQuad, 0, 1, 0},    {kLeadMm, 100, 50000, 3}, {kLeadTpi, 0, 1000, 1},
+      {kSteps, 1, 10000, 0},     {kMicro, 1, 256, 0}, {kReversed, 0, 1, 0},     {kRapid, 100, 20000, 0},
   };
   return kFields[i];
 }
@@ -82,23 +89,23 @@ inline bool settings_valid(const Settings& s) {
   if (s.check != settings_check(s)) return false;
   for (uint8_t i = 0; i < kFieldCount; ++i) {
     const FieldSpec f = field(i);
-    if (s.value[i] < f.min || s.value[i] > f.max) return false;
+    if (s.value[i] < uint32_t(f.min) || s.value[i] > uint32_t(f.max)) return false;
   }
   return true;
 }
 
-inline bool load_settings(Settings& s) {
+inline bool load_settings(Settings& s, const Settings& defaults) {
   if (settings_valid(s)) return true;
-  for (uint8_t i = 0; i < kFieldCount; ++i) s.value[i] = field(i).fallback;
+  s = defaults;
   seal(s);
   return false;
 }
 
-inline Machine machine(const Settings& s) {
+__attribute__((noinline)) inline Machine machine(const Settings& s) {
   const uint32_t* v = s.value;
   const Pitch lead = v[kFieldLeadTpi] ? Pitch{254000, v[kFieldLeadTpi]} : pitch_um(v[kFieldLeadUm]);
-  return {lead, stepper_counts(v[kFieldMotorSteps], v[kFieldMicrosteps]), uint16_t(v[kFieldSpindleCounts]),
-          v[kFieldReversed] != 0};
+  const uint16_t counts = uint16_t(v[kFieldEncoderLines] << (v[kFieldQuadrature] ? 2 : 0));
+  return {lead, stepper_counts(v[kFieldMotorSteps], v[kFieldMicrosteps]), counts, v[kFieldReversed] != 0};
 }
 
 }  // namespace ui

@@ -1,27 +1,29 @@
 // The lathe's operator workflow: keys in, screen out, the leadscrew driven
 // through a small interface. Hardware-free; host-tested with a simulated
-// lathe (tests/host/test_ui_*.cpp) and run on the m16 by
+// lathe (tests/host/test_ui_workflow.cpp) and run on the m16 by
 // firmware/apps/lathe/operator.cpp.
 //
 // Keys (the seed's 4x4 pad: 1 2 3 A / 4 5 6 B / 7 8 9 C / * 0 # D)
-//   digits and '#' (decimal point) type a number; D = OK, and stops the
+//   digits and '#' (decimal point, once) type a number; D = OK, and stops the
 //   carriage at once while it moves (emergency stop); C deletes the last
-//   character typed, on an empty field or elsewhere it goes back (during a
-//   move it stops the carriage too); A switches a pitch between mm and TPI,
-//   or steps forward through a table or the settings; B opens the pitch table,
-//   or steps back; '*' changes the sign of a move.
+//   character typed, on an empty field or elsewhere it goes back (while the
+//   carriage moves it stops it too); A switches a pitch between mm and TPI,
+//   or steps forward through a table or the settings; B opens the pitch
+//   table, or steps back; '*' first in a move's distance makes it negative.
 //
 // Screens (2 x 16)
 //   menu       "1Cut 2Move 3Set" + the live line (spindle rpm, carriage Z mm)
 //   kind       "1Feed 2Fine 3Thr": a feed (mm per turn, typed or from the
 //              feed table), the seed's fine feed 0.04 mm per turn, a thread
-//              (pitch in mm or TPI, typed or from the ISO/UNC/UNF/TPI table)
+//              (pitch in mm or TPI, typed or from the ISO or TPI table)
 //   hand       "1Right 2Left"
-//   length     mm with 2 decimals, 0 = until stopped (D or the limit switch)
-//   ready      "OK to cut  pass N" + the live line, or the ratio's error in um
-//              per spindle turn when core/lathe/ratio.h had to approximate it
+//   length     mm with 2 decimals, 0 = until stopped (D or the limit switch);
+//              the ratio is computed here (core/lathe/ratio.h's
+//              gear_ratio_exact): one the follower cannot run exactly is
+//              refused with a message, never approximated
+//   ready      "OK to cut pass N" + the live line
 //   cutting    "Wait index" until the leadscrew has synchronised, then the
-//              live rpm, Z and following error; ends when the leadscrew is
+//              following error and the live line; ends when the leadscrew is
 //              done (length, limit switch, D)
 //   done       the slip (following error when it stopped), "OK=retract"
 //   retract    back to where the pass began at the rapid rate, a progress
@@ -33,15 +35,21 @@
 //   message    a refusal or notice on row 0, the valid range on row 1 for a
 //              number out of range; any key or 1.5 s goes back
 //
-// Lathe interface (L: static functions, see tests/host/test_ui_workflow.cpp
-// for a simulated one): engage(ratio, reversed, length_steps) -> accepted;
-// synced() (following the spindle); busy(); stop_now(); position() (steps);
-// following_error() (steps); rpm(); move_to(steps, rate) -> accepted; ms()
-// (a free-running millisecond count); save(settings).
+// Lathe interface (L: static functions; a simulated one in
+// tests/host/ui_fake_lathe.h): engage(ratio, reversed, length_steps) ->
+// accepted, and then busy() until the pass ends; synced() (following the
+// spindle, not waiting for the index); busy(); stop_now(); position()
+// (steps); following_error() (steps); rpm(); move_to(steps, rate) ->
+// accepted, and then busy() until it ends; ms() (a free-running millisecond
+// count); save(settings).
 //
 // Numbers: a length or move in mm becomes steps as floor(um x counts per
-// turn / lead); the carriage position shows as floor(steps x lead / counts),
-// both exact in 128 bits (core/lathe/wide.h), so nothing rounds twice.
+// turn / lead) (toward zero for negatives); the carriage position shows as
+// floor(steps x lead / counts) um, both exact in 128 bits (core/lathe/
+// wide.h), so nothing rounds twice.
+//
+// Object: zero-initialised storage is a valid state before start() (no
+// constructor code in the image).
 #pragma once
 #include <stdint.h>
 
@@ -53,39 +61,51 @@
 namespace am {
 namespace ui {
 
-// floor(a m1 m2 / (d1 d2)), saturated to 2^31 - 1; every factor nonzero
-// except a.
-inline uint32_t scale(uint32_t a, uint32_t m1, uint32_t m2, uint32_t d1, uint32_t d2) {
-  U128 x = u128(a), rem;
-  mul_small(x, m1);
-  mul_small(x, m2);
-  divmod(x, u128(d1), x, rem);
-  divmod(x, u128(d2), x, rem);
-  return (!fits32(x) || x.w[0] > 0x7FFFFFFFu) ? 0x7FFFFFFFu : x.w[0];
+// v m / d, the magnitude floored, saturated to +-(2^31 - 1); d > 0.
+__attribute__((noinline)) inline int32_t scale(int32_t v, uint32_t m, uint32_t d) {
+  U128 x = u128(v < 0 ? uint32_t(0) - uint32_t(v) : uint32_t(v)), rem;
+  mul_small(x, m);
+  divmod(x, u128(d), x, rem);
+  const int32_t mag = (!fits32(x) || x.w[0] > 0x7FFFFFFFu) ? 0x7FFFFFFF : int32_t(x.w[0]);
+  return v < 0 ? -mag : mag;
 }
 
+// The settings' machines have whole counts per turn (below 2^21.3) and a
+// lead's denominator of at most 1000 (0.1 TPI), so both products fit 32 bits.
 inline int32_t um_to_steps(const Machine& m, int32_t um) {
-  const uint32_t mag = scale(um < 0 ? uint32_t(-um) : uint32_t(um), m.leadscrew_counts.num, m.leadscrew.den,
-                             m.leadscrew.num, m.leadscrew_counts.den);
-  return um < 0 ? -int32_t(mag) : int32_t(mag);
+  return scale(um, m.leadscrew_counts.num * m.leadscrew.den, m.leadscrew.num);
 }
 
 inline int32_t steps_to_um(const Machine& m, int32_t steps) {
-  const uint32_t mag = scale(steps < 0 ? uint32_t(0) - uint32_t(steps) : uint32_t(steps), m.leadscrew.num,
-                             m.leadscrew_counts.den, m.leadscrew.den, m.leadscrew_counts.num);
-  return steps < 0 ? -int32_t(mag) : int32_t(mag);
+  return scale(steps, m.leadscrew.num, m.leadscrew.den * m.leadscrew_counts.num);
 }
 
-enum class State : uint8_t { menu, kind, entry, table, hand, ready, cutting, done, retract, moving, settings, message };
+enum class State : uint8_t { menu, kind, entry, table, hand, ready, cutting, done, moving, settings, message };
 
-// What a number typed on the entry screen is for.
+// What a number typed on the entry screen is for (entry_row()'s order).
 enum class Entry : uint8_t { feed, pitch_mm, pitch_tpi, length, move, setting };
 
-constexpr uint8_t kEntryChars = 9;  // digits, '.', '-'
+inline const FieldSpec& entry_row(Entry e) {
+  static const char kFeed[] AM_FLASH = "Feed mm/rev B:tb";
+  static const char kMm[] AM_FLASH = "Pitch mm A:TPI";
+  static const char kTpi[] AM_FLASH = "Pitch TPI A:mm";
+  static const char kLength[] AM_FLASH = "Length mm 0=run";
+  static const char kMove[] AM_FLASH = "Move mm *:minus";
+  static const FieldSpec kSpecs[] AM_FLASH = {
+      {kFeed, 1, 5000, 3}, {kMm, 10, 50000, 3}, {kTpi, 10, 2000, 1}, {kLength, 0, 200000, 2}, {kMove, -200000, 200000, 2},
+  };
+  return kSpecs[uint8_t(e)];
+}
+
+// The workflow's steps stay out of line: each is called from several places
+// and inlined copies cost the ATmega16 flash it does not have.
+#define AM_UI_OUTLINE __attribute__((noinline))
+
+constexpr uint8_t kEntryChars = 8;      // digits, '.', '-'
+constexpr int32_t kTooLarge = 1000000;  // a typed number saturates here
 constexpr uint16_t kMessageMs = 1500;
 constexpr uint16_t kRefreshMs = 100;
-constexpr uint32_t kFineFeedUm = 40;  // the seed's fine feed
-constexpr int32_t kTooLarge = 1000000;  // a typed number saturates here
+constexpr uint16_t kFineFeedUm = 40;  // the seed's fine feed
 
 template <class L>
 class Workflow {
@@ -108,25 +128,21 @@ class Workflow {
 
   // One pass of the main loop: `key` is a new key press or 0.
   void poll(char key) {
-    if (key) {
-      on_key(key);
-      draw();
-      return;
-    }
-    const uint16_t now = L::ms();
     const State before = state_;
-    track(now);
-    if (state_ != before || uint16_t(now - drawn_ms_) >= kRefreshMs) draw();
+    const uint16_t now = L::ms();
+    if (key) on_key(key);
+    else track(now);
+    if (key || state_ != before || uint16_t(now - drawn_ms_) >= kRefreshMs) draw();
   }
 
  private:
   // --- transitions ------------------------------------------------------
-  void go(State s) {
+  AM_UI_OUTLINE void go(State s) {
     state_ = s;
     entered_ms_ = L::ms();
   }
 
-  void message(const char* top, const char* bottom, State back) {
+  AM_UI_OUTLINE void message(const char* top, const char* bottom, State back) {
     msg_top_ = top;
     msg_bottom_ = bottom;
     msg_range_ = false;
@@ -134,31 +150,27 @@ class Workflow {
     go(State::message);
   }
 
-  void begin_entry(Entry e) {
+  AM_UI_OUTLINE void begin_entry(Entry e) {
     entry_ = e;
     typed_len_ = 0;
-    typed_[0] = 0;
     go(State::entry);
   }
 
-  Machine machine_now() const { return machine(settings_); }
-
   // Time-driven changes: a message times out, a motion ends.
-  void track(uint16_t now) {
+  AM_UI_OUTLINE void track(uint16_t now) {
     if (state_ == State::message && uint16_t(now - entered_ms_) >= kMessageMs) go(back_);
     if (L::busy()) return;
     if (state_ == State::cutting) {
       slip_ = L::following_error();
       go(State::done);
-    } else if (state_ == State::retract) {
-      ++pass_;
-      go(State::ready);
     } else if (state_ == State::moving) {
-      go(State::menu);
+      if (retracting_) ++pass_;
+      go(retracting_ ? State::ready : State::menu);
     }
   }
 
-  void on_key(char k) {
+  AM_UI_OUTLINE void on_key(char k) {
+    const bool digit = k >= '0' && k <= '9';
     switch (state_) {
       case State::menu:
         if (k == '1') go(State::kind);
@@ -171,19 +183,33 @@ class Workflow {
         break;
       case State::kind:
         if (k == '1') begin_entry(Entry::feed);
-        if (k == '2') {
-          threading_ = false;
-          pitch_ = pitch_um(kFineFeedUm);
-          go(State::hand);
-        }
+        if (k == '2') choose(pitch_um(kFineFeedUm));
         if (k == '3') begin_entry(Entry::pitch_mm);
         if (k == 'C') go(State::menu);
         break;
       case State::entry:
-        entry_key(k);
+        if (digit || (k == '#' && !typed_point()) || (k == '*' && entry_ == Entry::move && typed_len_ == 0)) {
+          if (typed_len_ < kEntryChars) typed_[typed_len_++] = k == '#' ? '.' : k == '*' ? '-' : k;
+        } else if (k == 'C') {
+          if (typed_len_ == 0) go(entry_ == Entry::length ? State::hand : entry_ == Entry::setting ? State::settings
+                                   : entry_ == Entry::move ? State::menu : State::kind);
+          else --typed_len_;
+        } else if (k == 'A' && (entry_ == Entry::pitch_mm || entry_ == Entry::pitch_tpi)) {
+          begin_entry(entry_ == Entry::pitch_mm ? Entry::pitch_tpi : Entry::pitch_mm);
+        } else if (k == 'B' && entry_ <= Entry::pitch_tpi) {
+          list_ = List(entry_);  // feed, metric, inch: the lists' order
+          row_ = 0;
+          go(State::table);
+        } else if (k == 'D') {
+          int32_t v = 0;
+          if (parse(v)) accept(v);
+        }
         break;
       case State::table:
-        table_key(k);
+        if (k == 'A') row_ = uint8_t(row_ + 1 == list_size(list_) ? 0 : row_ + 1);
+        if (k == 'B') row_ = uint8_t((row_ == 0 ? list_size(list_) : row_) - 1);
+        if (k == 'C') go(State::entry);
+        if (k == 'D') choose(list_pitch(list_, row_));
         break;
       case State::hand:
         if (k == '1' || k == '2') {
@@ -193,20 +219,34 @@ class Workflow {
         if (k == 'C') go(State::kind);
         break;
       case State::ready:
-        if (k == 'D') cut();
+        if (k == 'D') {
+          pass_start_ = L::position();
+          if (L::engage(ratio_, reversed_, length_steps_)) go(State::cutting);
+          else message(AM_TEXT("Cut refused"), AM_TEXT("too fast?"), State::ready);
+        }
         if (k == 'C') go(State::menu);
         break;
       case State::cutting:
-      case State::retract:
       case State::moving:
         if (k == 'D' || k == 'C') L::stop_now();
         break;
       case State::done:
-        if (k == 'D') move(pass_start_, State::retract, State::done);
+        if (k == 'D') move(pass_start_, true);
         if (k == 'C') go(State::menu);
         break;
       case State::settings:
-        settings_key(k);
+        if (k == 'A') field_ = uint8_t(field_ + 1 == kFieldCount ? 0 : field_ + 1);
+        if (k == 'B') field_ = uint8_t((field_ == 0 ? uint8_t(kFieldCount) : field_) - 1);
+        if (k == 'D') begin_entry(Entry::setting);
+        if (k == 'C') {
+          if (!changed_) {
+            go(State::menu);
+          } else {
+            seal(settings_);
+            L::save(settings_);
+            message(AM_TEXT("Settings saved"), AM_TEXT(""), State::menu);
+          }
+        }
         break;
       case State::message:
         go(back_);
@@ -214,242 +254,140 @@ class Workflow {
     }
   }
 
-  // The ratio for the pitch, hand and settings; a pass needs one that fits.
-  void prepare() {
-    const GearRatio g = gear_ratio(machine_now(), {pitch_, 1, left_ ? Hand::left : Hand::right});
-    if (g.status == RatioStatus::out_of_range) {
-      message(AM_TEXT("Ratio too large"), AM_TEXT("pitch or setup?"), State::kind);
-      return;
-    }
-    ratio_ = g.ratio;
-    reversed_ = g.reversed;
-    approximated_ = g.status == RatioStatus::approximated;
-    error_pm_ = g.error_pm;
-    pass_ = 1;
-    go(State::ready);
+  AM_UI_OUTLINE void choose(const Pitch& p) {
+    pitch_ = p;
+    go(State::hand);
   }
 
-  void cut() {
-    pass_start_ = L::position();
-    if (L::engage(ratio_, reversed_, length_steps_)) go(State::cutting);
-    else message(AM_TEXT("Cut refused"), AM_TEXT("too fast?"), State::ready);
-  }
-
-  // A move at the rapid rate to `target`, shown as `moving` (retract or
-  // move); refused: a message, then `refused`.
-  void move(int32_t target, State moving, State refused) {
+  // A move at the rapid rate to `target`; refused: a message.
+  AM_UI_OUTLINE void move(int32_t target, bool retract) {
     origin_ = L::position();
     target_ = target;
-    if (L::move_to(target, settings_.value[kFieldRapid])) go(moving);
-    else message(AM_TEXT("Move refused"), AM_TEXT(""), refused);
+    retracting_ = retract;
+    if (L::move_to(target, settings_.value[kFieldRapid])) go(State::moving);
+    else message(AM_TEXT("Move refused"), AM_TEXT(""), retract ? State::done : State::menu);
   }
 
   // --- number entry -----------------------------------------------------
-  struct Spec {
-    const char* prompt;
-    int32_t min, max;
-    uint8_t decimals;
-  };
-
-  Spec spec() const {
-    switch (entry_) {
-      case Entry::feed: return {AM_TEXT("Feed mm/rev B:tb"), 1, 5000, 3};
-      case Entry::pitch_mm: return {AM_TEXT("Pitch mm A:TPI"), 10, 50000, 3};
-      case Entry::pitch_tpi: return {AM_TEXT("Pitch TPI A:mm"), 10, 2000, 1};
-      case Entry::length: return {AM_TEXT("Length mm 0=run"), 0, 200000, 2};
-      case Entry::move: return {AM_TEXT("Move mm *:sign"), -200000, 200000, 2};
-      case Entry::setting: break;
-    }
-    const FieldSpec f = field(field_);
-    return {f.label, int32_t(f.min), int32_t(f.max), f.decimals};
+  // Whether a decimal point has been typed ('#' then types no second one).
+  bool typed_point() const {
+    for (uint8_t i = 0; i < typed_len_; ++i)
+      if (typed_[i] == '.') return true;
+    return false;
   }
 
-  State entry_back() const {
-    return entry_ == Entry::length ? State::hand : entry_ == Entry::setting ? State::settings
-           : entry_ == Entry::move                                          ? State::menu
-                                                                            : State::kind;
-  }
-
-  void entry_key(char k) {
-    const bool room = typed_len_ < kEntryChars - 1;
-    if ((k >= '0' && k <= '9') || k == '#') {
-      if (room) typed_[typed_len_++] = k == '#' ? '.' : k;
-    } else if (k == '*' && entry_ == Entry::move) {
-      if (typed_len_ && typed_[0] == '-') {
-        for (uint8_t i = 0; i < typed_len_; ++i) typed_[i] = typed_[i + 1];
-        --typed_len_;
-      } else if (room) {
-        for (uint8_t i = typed_len_ + 1; i > 0; --i) typed_[i] = typed_[i - 1];
-        typed_[0] = '-';
-        ++typed_len_;
-      }
-    } else if (k == 'C') {
-      if (typed_len_ == 0) go(entry_back());
-      else --typed_len_;
-    } else if (k == 'A' && (entry_ == Entry::pitch_mm || entry_ == Entry::pitch_tpi)) {
-      begin_entry(entry_ == Entry::pitch_mm ? Entry::pitch_tpi : Entry::pitch_mm);
-    } else if (k == 'B' && entry_ != Entry::length && entry_ != Entry::move && entry_ != Entry::setting) {
-      list_ = entry_ == Entry::feed ? kFeedList : entry_ == Entry::pitch_mm ? kMetricList : kInchList;
-      row_ = 0;
-      go(State::table);
-    } else if (k == 'D') {
-      int32_t v;
-      if (parse(v)) accept(v);
-    }
-    typed_[typed_len_] = 0;
+  AM_UI_OUTLINE FieldSpec spec() const {
+    return flash_copy(entry_ == Entry::setting ? &field_row(field_) : &entry_row(entry_));
   }
 
   // The typed text as value x 10^decimals; false (and a message) if it is
   // not a number, has too many decimals or is out of range.
-  bool parse(int32_t& out) {
-    const Spec s = spec();
+  AM_UI_OUTLINE bool parse(int32_t& out) {
+    const FieldSpec s = spec();
     int32_t v = 0;
-    uint8_t frac = 0;
-    bool point = false, digits = false;
-    for (uint8_t i = typed_[0] == '-' ? 1 : 0; i < typed_len_; ++i) {
+    uint8_t frac = 0, digits = 0;
+    bool point = false;
+    const bool negative = typed_len_ && typed_[0] == '-';
+    for (uint8_t i = negative; i < typed_len_; ++i) {
       if (typed_[i] == '.') {
-        if (point) return refuse(AM_TEXT("Two points"));
         point = true;
         continue;
       }
-      digits = true;
-      // Saturated at kTooLarge, above every field's range even scaled.
-      v = v >= kTooLarge ? kTooLarge : v * 10 + (typed_[i] - '0');
-      if (point) ++frac;
+      ++digits;
+      v = v >= kTooLarge ? kTooLarge : v * 10 + (typed_[i] - '0');  // above every range, scaled or not
+      frac = uint8_t(frac + point);
     }
-    if (!digits) return refuse(AM_TEXT("Type a number"));
-    if (frac > s.decimals) return refuse(AM_TEXT("Fewer decimals"));
+    if (!digits) return refuse(AM_TEXT("Type a number"), false);
+    if (frac > s.decimals) return refuse(AM_TEXT("Fewer decimals"), false);
     for (; frac < s.decimals; ++frac) v *= 10;
-    if (typed_[0] == '-') v = -v;
-    if (v < s.min || v > s.max) {
-      refuse(AM_TEXT("Out of range"));
-      msg_range_ = true;
-      return false;
-    }
+    if (negative) v = -v;
+    if (v < s.min || v > s.max) return refuse(AM_TEXT("Out of range"), true);
     out = v;
     return true;
   }
 
-  bool refuse(const char* why) {
+  AM_UI_OUTLINE bool refuse(const char* why, bool range) {
     message(why, AM_TEXT(""), State::entry);
+    msg_range_ = range;
     return false;
   }
 
-  void accept(int32_t v) {
-    const Machine m = machine_now();
-    switch (entry_) {
-      case Entry::feed:
-      case Entry::pitch_mm:
-        threading_ = entry_ == Entry::pitch_mm;
-        pitch_ = pitch_um(uint32_t(v));
-        go(State::hand);
-        break;
-      case Entry::pitch_tpi:
-        threading_ = true;
-        pitch_ = {254000, uint32_t(v)};
-        go(State::hand);
-        break;
-      case Entry::length:
-        length_steps_ = um_to_steps(m, v * 10);
-        prepare();
-        break;
-      case Entry::move:
-        move(L::position() + um_to_steps(m, v * 10), State::moving, State::menu);
-        break;
-      case Entry::setting:
-        if (settings_.value[field_] != uint32_t(v)) changed_ = true;
-        settings_.value[field_] = uint32_t(v);
-        go(State::settings);
-        break;
+  AM_UI_OUTLINE void accept(int32_t v) {
+    const Machine m = machine(settings_);
+    if (entry_ == Entry::feed || entry_ == Entry::pitch_mm) choose(pitch_um(uint32_t(v)));
+    if (entry_ == Entry::pitch_tpi) choose({254000, uint32_t(v)});
+    if (entry_ == Entry::move) move(L::position() + um_to_steps(m, v * 10), false);
+    if (entry_ == Entry::setting) {
+      changed_ = changed_ || settings_.value[field_] != uint32_t(v);
+      settings_.value[field_] = uint32_t(v);
+      go(State::settings);
     }
-  }
-
-  void table_key(char k) {
-    const uint8_t n = list_size(list_);
-    if (k == 'A') row_ = uint8_t(row_ + 1 == n ? 0 : row_ + 1);
-    if (k == 'B') row_ = uint8_t(row_ == 0 ? n - 1 : row_ - 1);
-    if (k == 'C') go(State::entry);
-    if (k == 'D') {
-      threading_ = list_ != kFeedList;
-      pitch_ = list_pitch(list_, row_);
-      go(State::hand);
-    }
-  }
-
-  void settings_key(char k) {
-    if (k == 'A') field_ = uint8_t(field_ + 1 == kFieldCount ? 0 : field_ + 1);
-    if (k == 'B') field_ = uint8_t(field_ == 0 ? kFieldCount - 1 : field_ - 1);
-    if (k == 'D') begin_entry(Entry::setting);
-    if (k == 'C') {
-      if (!changed_) {
-        go(State::menu);
+    if (entry_ == Entry::length) {
+      length_steps_ = um_to_steps(m, v * 10);
+      const GearRatio g = gear_ratio_exact(m, {pitch_, 1, left_ ? Hand::left : Hand::right});
+      if (g.status != RatioStatus::exact) {
+        message(AM_TEXT("Ratio not exact"), AM_TEXT("pitch or setup?"), State::kind);
         return;
       }
-      seal(settings_);
-      L::save(settings_);
-      message(AM_TEXT("Settings saved"), AM_TEXT(""), State::menu);
+      ratio_ = g.ratio;
+      reversed_ = g.reversed;
+      pass_ = 1;
+      go(State::ready);
     }
   }
 
   // --- drawing ----------------------------------------------------------
+  // Carriage Z in mm from column 9 of `row`.
+  AM_UI_OUTLINE void z(uint8_t row) { screen_.number(row, 9, steps_to_um(machine(settings_), L::position()) / 10, 7, 2); }
+
   // "1234rpm Z-123.45" on row 1.
-  void live(uint8_t row) {
-    screen_.number(row, 0, L::rpm(), 4, 0);
-    screen_.text(row, 4, AM_TEXT("rpm Z"));
-    screen_.number(row, 9, steps_to_um(machine_now(), L::position()) / 10, 7, 2);
+  void live() {
+    screen_.number(1, 0, L::rpm(), 4, 0);
+    screen_.text(1, 4, AM_TEXT("rpm Z"));
+    z(1);
   }
 
-  // The distance covered of the current move as a bar on row 1.
-  void progress() {
+  // The distance covered of the current move as a bar on row 1: floor(80
+  // covered / total) columns, both halved until the total fits 15 bits (a
+  // move of more than 32767 steps may show one column less).
+  AM_UI_OUTLINE void progress() {
     uint32_t total = uint32_t(target_ - origin_), done = uint32_t(L::position() - origin_);
-    if (int32_t(total) < 0) {
-      total = 0u - total;
-      done = 0u - done;
-    }
+    if (int32_t(total) < 0) total = 0u - total, done = 0u - done;
     if (int32_t(done) < 0) done = 0;
-    if (done > total) done = total;
-    while (total > 0x1FFFFFF) total >>= 1, done >>= 1;
-    screen_.bar(1, total ? uint8_t(done * kBarSteps / total) : kBarSteps);
+    while (total > 0x7FFF) total >>= 1, done >>= 1;
+    const uint16_t t = uint16_t(total), d = uint16_t(done < t ? done : t);
+    screen_.bar(1, t ? uint8_t(d * uint32_t(kBarSteps) / t) : kBarSteps);
   }
 
-  void draw() {
+  AM_UI_OUTLINE void draw() {
     drawn_ms_ = L::ms();
     Screen& s = screen_;
     switch (state_) {
       case State::menu:
         s.line(0, AM_TEXT("1Cut 2Move 3Set"));
-        live(1);
+        live();
         break;
       case State::kind:
         s.line(0, AM_TEXT("1Feed 2Fine 3Thr"));
-        live(1);
+        live();
         break;
       case State::entry: {
-        const Spec sp = spec();
-        s.line(0, sp.prompt);
-        s.put(1, s.ram_text(1, 0, typed_), '_');
-        s.blank(1, uint8_t(typed_len_ + 1));
+        s.line(0, spec().label);
+        for (uint8_t i = 0; i < kCols; ++i) s.put(1, i, i < typed_len_ ? typed_[i] : i == typed_len_ ? '_' : ' ');
         break;
       }
       case State::table:
         draw_row(s, list_, row_);
         break;
       case State::hand:
-        s.line(0, threading_ ? AM_TEXT("Thread hand") : AM_TEXT("Feed direction"));
+        s.line(0, AM_TEXT("Hand (feed dir)"));
         s.line(1, AM_TEXT("1Right 2Left"));
         break;
-      case State::ready: {
+      case State::ready:
         s.line(0, AM_TEXT("OK to cut pass"));
         s.number(0, 14, pass_, 2, 0);
-        if (approximated_) {  // the ratio's error in um per spindle turn
-          s.text(1, 0, AM_TEXT("err"));
-          s.text(1, s.number(1, 3, error_pm_ / 1000, 8, 3), AM_TEXT("um/r"));
-          s.blank(1, 15);
-        } else {
-          live(1);
-        }
+        live();
         break;
-      }
       case State::cutting:
         if (L::synced()) {
           s.text(0, 0, AM_TEXT("Cut  err"));
@@ -457,17 +395,16 @@ class Workflow {
         } else {
           s.line(0, AM_TEXT("Wait index"));
         }
-        live(1);
+        live();
         break;
       case State::done:
         s.text(0, 0, AM_TEXT("Done slip"));
         s.number(0, 9, slip_, 7, 0);
         s.line(1, AM_TEXT("OK=retract C=end"));
         break;
-      case State::retract:
       case State::moving:
-        s.text(0, 0, state_ == State::retract ? AM_TEXT("Retract Z") : AM_TEXT("Move    Z"));
-        s.number(0, 9, steps_to_um(machine_now(), L::position()) / 10, 7, 2);
+        s.text(0, 0, retracting_ ? AM_TEXT("Retract Z") : AM_TEXT("Move    Z"));
+        z(0);
         progress();
         break;
       case State::settings: {
@@ -482,7 +419,7 @@ class Workflow {
       case State::message:
         s.line(0, msg_top_);
         if (msg_range_) {
-          const Spec sp = spec();
+          const FieldSpec sp = spec();
           s.blank(1, s.number(1, s.text(1, s.number(1, 0, sp.min, 0, sp.decimals), AM_TEXT("..")), sp.max, 0,
                               sp.decimals));
         } else {
@@ -494,33 +431,31 @@ class Workflow {
 
   Screen screen_;
   Settings settings_;
-  State state_ = State::menu;
-  State back_ = State::menu;
-  Entry entry_ = Entry::feed;
-  List list_ = kFeedList;
-  uint8_t row_ = 0;
-  uint8_t field_ = 0;
-  bool changed_ = false;
-  bool threading_ = false;
-  bool left_ = false;
-  bool msg_range_ = false;
-  uint8_t typed_len_ = 0;
-  char typed_[kEntryChars + 1] = {};
-  uint16_t pass_ = 1;
-  uint16_t entered_ms_ = 0;
-  uint16_t drawn_ms_ = 0;
-  const char* msg_top_ = nullptr;
-  const char* msg_bottom_ = nullptr;
-  Pitch pitch_ = {1000, 1};
-  Ratio ratio_ = {1, 1};
-  bool reversed_ = false;
-  bool approximated_ = false;
-  int32_t error_pm_ = 0;
-  int32_t length_steps_ = 0;
-  int32_t pass_start_ = 0;  // where the pass began: the retract's target
-  int32_t origin_ = 0;      // where the current retract or move began
-  int32_t target_ = 0;      // and where it ends
-  int32_t slip_ = 0;
+  State state_;
+  State back_;
+  Entry entry_;
+  List list_;
+  uint8_t row_;
+  uint8_t field_;
+  bool changed_;
+  bool left_;
+  bool retracting_;
+  bool msg_range_;
+  uint8_t typed_len_;
+  char typed_[kEntryChars];
+  uint16_t pass_;
+  uint16_t entered_ms_;
+  uint16_t drawn_ms_;
+  const char* msg_top_;
+  const char* msg_bottom_;
+  Pitch pitch_;
+  Ratio ratio_;
+  bool reversed_;
+  int32_t length_steps_;
+  int32_t pass_start_;  // where the pass began: the retract's target
+  int32_t origin_;      // where the current move began
+  int32_t target_;      // and where it ends
+  int32_t slip_;
 };
 
 }  // namespace ui

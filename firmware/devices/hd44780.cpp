@@ -10,16 +10,19 @@
 #include <util/delay.h>
 
 #include "../../hal/avr/gpio.h"
+#include "../board.h"
 #include "../engine/clock.h"
 
 namespace hd44780 {
 namespace {
 
-using Data = hal::PortBits<'A'>;  // D4..D7 on bits 0..3
-using Rs = hal::Pin<'A', 4>;
-using Rw = hal::Pin<'A', 5>;
-using E = hal::Pin<'A', 6>;
+using Data = hal::PortBits<board::LcdD4::port>;
+using Rs = board::LcdRs;
+using Rw = board::LcdRw;
+using E = board::LcdE;
 constexpr uint8_t kDataMask = 0x0F;
+static_assert(board::LcdD4::bit == 0 && board::LcdD7::bit == 3 && board::LcdD7::port == board::LcdD4::port,
+              "D4..D7 on bits 0..3 of one port: one write sets a nibble");
 
 // Cycles of at least `ns` nanoseconds.
 constexpr uint32_t cycles(uint32_t ns) { return (F_CPU / 1000000UL * ns + 999) / 1000 + 1; }
@@ -95,11 +98,15 @@ bool ready() {
   return late;
 }
 
+// Twice an instruction's execution time (37 us, or 1.52 ms for clear).
+void wait_executed(uint16_t instruction_count) {
+  while (instruction_count--) _delay_us(2 * 37);
+}
+
 // An instruction during init(), by the datasheet's timing (no busy flag yet).
 void command_wait(uint8_t b) {
   write(false, b);
-  if (b <= 0x03) _delay_us(2 * 1520);
-  else _delay_us(2 * 37);
+  wait_executed(b <= 0x03 ? 1520 / 37 + 1 : 1);
 }
 
 }  // namespace
@@ -113,15 +120,15 @@ void init() {
   Rw::output();
   E::low();
   E::output();
-  _delay_ms(50);
+  wait_executed(50000 / 74);  // > 40 ms after power-up
   nibble(0x3);
-  _delay_ms(5);
+  wait_executed(5000 / 74);  // > 4.1 ms
   nibble(0x3);
-  _delay_us(150);
+  wait_executed(2);  // > 100 us
   nibble(0x3);
-  _delay_us(150);
+  wait_executed(2);
   nibble(0x2);
-  _delay_us(2 * 37);
+  wait_executed(1);
   command_wait(kFourBitTwoLines);
   command_wait(kDisplayOff);
   command_wait(kClear);
@@ -132,7 +139,7 @@ void init() {
     const uint8_t row_bits = uint8_t(0x1F & ~(0x1F >> k));
     for (uint8_t r = 0; r < 8; ++r) {
       write(true, row_bits);
-      _delay_us(2 * 37);
+      wait_executed(1);
     }
   }
   command_wait(kDisplayOn);

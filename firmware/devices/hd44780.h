@@ -1,7 +1,8 @@
 // HD44780 character LCD (2 x 16) on a 4-bit bus, written from the datasheet.
 //
-// Wiring (the seed's, firmware/boards/m16.h): PA0..PA3 = D4..D7, PA4 RS,
-// PA5 RW, PA6 E; PA7 is left alone.
+// Wiring (the board's LcdD4..LcdD7, LcdRs, LcdRw, LcdE; the seed's in
+// firmware/boards/common/m16_wiring.h): PA0..PA3 = D4..D7, PA4 RS, PA5 RW,
+// PA6 E; PA7 is left alone.
 //
 // Contract
 //   init() brings the controller up by instruction (the datasheet's 4-bit

@@ -4,14 +4,18 @@
 #include <avr/pgmspace.h>
 
 #include "../../hal/avr/gpio.h"
+#include "../board.h"
 #include "../engine/clock.h"
 
 namespace keypad {
 namespace {
 
-using Port = hal::PortBits<'B'>;
+using Port = hal::PortBits<board::KeypadRow0::port>;
 constexpr uint8_t kColumns = 0xF0;  // PB7..PB4
 constexpr uint8_t kRows = 0x0F;     // PB3..PB0
+static_assert(board::KeypadColumn0::bit == 7 && board::KeypadColumn3::bit == 4 && board::KeypadRow0::bit == 3 &&
+                  board::KeypadRow3::bit == 0 && board::KeypadColumn0::port == board::KeypadRow0::port,
+              "the scan assumes columns PB7..PB4 and rows PB3..PB0 of one port");
 constexpr uint8_t kNone = 0xFF;
 
 const char kKeys[16] PROGMEM = {'1', '2', '3', 'A', '4', '5', '6', 'B', '7', '8', '9', 'C', '*', '0', '#', 'D'};

@@ -1,7 +1,8 @@
 // 4 x 4 matrix keypad (the seed's layout: 1 2 3 A / 4 5 6 B / 7 8 9 C /
 // * 0 # D), scanned from the main loop with debounce on the time base.
 //
-// Wiring (firmware/boards/m16.h): column c (0 = the "1 4 7 *" column) on
+// Wiring (the board's KeypadColumn0.. and KeypadRow0.., the seed's in
+// firmware/boards/common/m16_wiring.h): column c (0 = the "1 4 7 *" column) on
 // PB(7 - c), row r (0 = the "1 2 3 A" row) on PB(3 - r). Rows are inputs
 // with pull-ups; the column being read is driven low and the others are
 // inputs with pull-ups, so two keys pressed in one row never short two

@@ -90,35 +90,50 @@ TEST(UiScreen, BarFillsGlyphByGlyph) {
 TEST(UiTables, RowsAreCoreLathesEntries) {
   using namespace am;
   using namespace am::ui;
-  ASSERT_EQ(list_size(kMetricList), kIsoCoarseCount + kIsoFineCount);
+  ASSERT_EQ(list_size(kMetricList), kIsoCoarseCount);
   for (uint8_t i = 0; i < list_size(kMetricList); ++i) {
-    const MetricThread m = i < kIsoCoarseCount ? kIsoCoarse[i] : kIsoFine[i - kIsoCoarseCount];
     const Pitch p = list_pitch(kMetricList, i);
-    EXPECT_EQ(p.num, m.pitch_um);
+    EXPECT_EQ(p.num, kIsoCoarse[i].pitch_um);
     EXPECT_EQ(p.den, 1u);
   }
+  ASSERT_EQ(list_size(kInchList), kCommonTpiCount);
   for (uint8_t i = 0; i < list_size(kInchList); ++i) {
-    const uint8_t tpi_x2 = i < kUncCount              ? kUnc[i].tpi_x2
-                           : i < kUncCount + kUnfCount ? kUnf[i - kUncCount].tpi_x2
-                                                       : kCommonTpi[i - kUncCount - kUnfCount];
     const Pitch p = list_pitch(kInchList, i);
     EXPECT_EQ(p.num, 50800u);
-    EXPECT_EQ(p.den, tpi_x2);
+    EXPECT_EQ(p.den, kCommonTpi[i]);
+  }
+  // The common TPI hold every UNC and UNF pitch (so those tables are left out).
+  for (const InchThread* t : {kUnc, kUnf}) {
+    const size_t n = t == kUnc ? kUncCount : kUnfCount;
+    for (size_t i = 0; i < n; ++i) {
+      bool found = false;
+      for (uint8_t k : kCommonTpi) found = found || k == t[i].tpi_x2;
+      EXPECT_TRUE(found) << int(t[i].tpi_x2);
+    }
+  }
+  // And the ISO coarse pitches every ISO fine one.
+  for (const MetricThread& f : kIsoFine) {
+    bool found = false;
+    for (const MetricThread& c : kIsoCoarse) found = found || c.pitch_um == f.pitch_um;
+    EXPECT_TRUE(found) << f.pitch_um;
   }
   for (uint8_t i = 0; i < list_size(kFeedList); ++i) EXPECT_EQ(list_pitch(kFeedList, i).num, kTurningFeeds[i]);
   Screen s;
   s.clear_sent();
   draw_row(s, kMetricList, 6);  // M2.5 x 0.45
   EXPECT_EQ(row_text(s, 0), "ISO M2.5        ");
-  EXPECT_EQ(row_text(s, 1), "0.450mm     7/60");
-  draw_row(s, kInchList, 13);  // 1/2-13 UNC
-  EXPECT_EQ(row_text(s, 0), "UNC 0.5000in    ");
-  EXPECT_EQ(row_text(s, 1), "13.0tpi    14/88");
+  EXPECT_EQ(row_text(s, 1), "0.450mm         ");
+  draw_row(s, kInchList, 9);  // 11.5 TPI
+  EXPECT_EQ(row_text(s, 0), "Inch            ");
+  EXPECT_EQ(row_text(s, 1), "11.5tpi         ");
 }
 
-TEST(UiSettings, DefaultsAreTheSeedsMachine) {
+// The seed's machine: a 40-slot disc, a 3.175 mm leadscrew, 200 full steps.
+const am::ui::Settings kSeed = {{40, 0, 3175, 0, 200, 1, 0, 4000}, 0};
+
+TEST(UiSettings, DefaultsReplaceAnInvalidBlock) {
   am::ui::Settings s{};
-  EXPECT_FALSE(am::ui::load_settings(s));
+  EXPECT_FALSE(am::ui::load_settings(s, kSeed));
   const am::Machine m = am::ui::machine(s);
   EXPECT_EQ(m.spindle_counts, 40);
   EXPECT_EQ(m.leadscrew.num, 3175u);
@@ -127,11 +142,14 @@ TEST(UiSettings, DefaultsAreTheSeedsMachine) {
   EXPECT_EQ(m.leadscrew_counts.den, 1u);
   EXPECT_FALSE(m.leadscrew_reversed);
   EXPECT_TRUE(am::ui::settings_valid(s));
+  s.value[am::ui::kFieldQuadrature] = 1;  // both edges of both channels
+  s.value[am::ui::kFieldEncoderLines] = am::ui::kMaxLines;
+  EXPECT_EQ(am::ui::machine(s).spindle_counts, 4 * am::ui::kMaxLines);
 }
 
 TEST(UiSettings, EveryCorruptionIsCaught) {
   am::ui::Settings good{};
-  am::ui::load_settings(good);
+  am::ui::load_settings(good, kSeed);
   good.value[am::ui::kFieldMicrosteps] = 16;
   good.value[am::ui::kFieldLeadTpi] = 80;  // an 8 TPI leadscrew
   am::ui::seal(good);
@@ -151,11 +169,11 @@ TEST(UiSettings, EveryCorruptionIsCaught) {
   for (uint8_t f = 0; f < am::ui::kFieldCount; ++f) {
     am::ui::Settings s = good;
     const am::ui::FieldSpec spec = am::ui::field(f);
-    s.value[f] = spec.max + 1;
+    s.value[f] = uint32_t(spec.max) + 1;
     am::ui::seal(s);
     EXPECT_FALSE(am::ui::settings_valid(s)) << int(f);
     if (spec.min > 0) {
-      s.value[f] = spec.min - 1;
+      s.value[f] = uint32_t(spec.min) - 1;
       am::ui::seal(s);
       EXPECT_FALSE(am::ui::settings_valid(s)) << int(f);
     }
@@ -163,7 +181,7 @@ TEST(UiSettings, EveryCorruptionIsCaught) {
   // Erased cells.
   am::ui::Settings erased;
   std::memset(&erased, 0xFF, sizeof erased);
-  EXPECT_FALSE(am::ui::load_settings(erased));
+  EXPECT_FALSE(am::ui::load_settings(erased, kSeed));
   EXPECT_TRUE(am::ui::settings_valid(erased));  // now the defaults
 }
 

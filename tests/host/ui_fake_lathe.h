@@ -103,8 +103,12 @@ inline void wait_ms(Ui& ui, int ms) {
   }
 }
 
+// The seed's machine: a 40-slot disc counted on one edge, a 3.175 mm
+// leadscrew, a 200-step motor in full steps, rapid 4000 steps/s.
+inline am::ui::Settings seed_machine() { return {{40, 0, 3175, 0, 200, 1, 0, 4000}, 0}; }
+
 inline am::ui::Settings default_settings() {
   am::ui::Settings s{};
-  am::ui::load_settings(s);  // a zero block is invalid: the defaults
+  am::ui::load_settings(s, seed_machine());  // a zero block is invalid: the defaults
   return s;
 }

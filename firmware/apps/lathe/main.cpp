@@ -1,6 +1,7 @@
 // The lathe program's entry point: the board's safe power-on state (driver
 // disabled, step low, the L298 off), the time base, the leadscrew and the
-// UART front end; the main loop polls them. Everything that must keep step
+// UART front end, or on a board with kOperatorPanel the operator panel
+// (operator.h) in its place; the main loop polls them. Everything that must keep step
 // with the spindle runs in the leadscrew's interrupts, so the loop's own
 // work (the front end's replies, an operator panel's screen) never disturbs
 // the following.
@@ -10,6 +11,7 @@
 #include "../../board.h"
 #include "../../engine/clock.h"
 #include "leadscrew.h"
+#include "operator.h"
 #include "protocol.h"
 
 int main() {
@@ -17,11 +19,13 @@ int main() {
   board::init();
   clock::init();
   leadscrew::init();
-  hal::uart::init(F_CPU, board::kBaud);
+  if (!board::kOperatorPanel) hal::uart::init(F_CPU, board::kBaud);
   sei();
-  protocol::banner();
+  if (board::kOperatorPanel) operator_ui::init();
+  else protocol::banner();
   for (;;) {
     leadscrew::poll();
-    protocol::poll();
+    if (board::kOperatorPanel) operator_ui::poll();
+    else protocol::poll();
   }
 }
