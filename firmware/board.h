@@ -14,6 +14,10 @@ struct Heater;  // a heater's wiring (firmware/boards/m32.h), only with kHeater
 // counts where the motors are while they move. Without it, where the
 // queued motion ends (Marlin's logical position).
 constexpr bool kOdometer = true;
+// A lathe's spindle encoder and limit switch (firmware/boards/m16-lathe.h),
+// named in the descriptor for the simulator.
+constexpr bool kSpindleEncoder = false;
+struct SpindlePins;  // A, B, Index, Limit: only with kSpindleEncoder
 }  // namespace board_defaults
 namespace board {
 using namespace board_defaults;

@@ -9,7 +9,9 @@
 //   ENCODER C<lines> E<1|4> the spindle encoder: one channel counted once
 //                           per line, or quadrature x4.
 //   STOP                    disengage(): a pass stops, a move decelerates.
-//   ? (or STATUS)           the status line.
+//   WAIT                    answered once the pass or move has ended (the
+//                           lines after it wait too).
+//   ? (or STATUS)           the status line, then ok.
 // A motion line while a pass or move runs is refused (`error: busy`): the
 // sender asks `?` until `state=idle`. Words follow the G-code grammar
 // (core/text/gcode_parser.h: parse_gcode reads them, so its checks apply);
@@ -33,6 +35,7 @@ namespace {
 using Reader = am::LineReader<64>;
 Reader reader;
 bool tainted;  // bytes were lost: refuse lines until one ends with the ring empty
+bool waiting;  // a WAIT is answered when the leadscrew is idle
 
 void ok() { hal::uart::write_P(PSTR("ok\n")); }
 
@@ -158,6 +161,7 @@ void status() {
   hal::uart::write_P(PSTR(" last="));
   hal::uart::write_P(kStops + 8 * uint8_t(leadscrew::last_stop()));
   hal::uart::write('\n');
+  ok();
 }
 
 // "G33" (any case, blanks after G allowed) at p: p moves past it.
@@ -173,6 +177,8 @@ bool g33(const char*& p) {
   return true;
 }
 
+const char kNotLathe[] PROGMEM = "not a lathe command (G33, G0, ENCODER, STOP, WAIT, ?)";
+
 void on_line(const char* p) {
   while (am::detail::blank(*p)) ++p;
   if (!*p) return ok();
@@ -180,6 +186,10 @@ void on_line(const char* p) {
   if (am::detail::keyword(p, "STOP")) {
     leadscrew::disengage();
     return ok();
+  }
+  if (am::detail::keyword(p, "WAIT")) {
+    waiting = true;
+    return;
   }
   const bool is_encoder = am::detail::keyword(p, "ENCODER");
   const bool is_thread = !is_encoder && g33(p);
@@ -190,12 +200,12 @@ void on_line(const char* p) {
     const am::GcodeCode c = b.code[g];
     if (c != am::GcodeCode::none && !(g == uint8_t(am::GcodeGroup::motion) && c == am::GcodeCode::g0 &&
                                       !is_encoder && !is_thread))
-      return error(PSTR("not a lathe command (G33, G0, ENCODER, STOP, ?)"));
+      return error(kNotLathe);
   }
   if (is_encoder) return encoder(b);
   if (is_thread) return thread(b);
   if (b.group(am::GcodeGroup::motion) == am::GcodeCode::g0) return position_move(b);
-  if (b.words) return error(PSTR("not a lathe command (G33, G0, ENCODER, STOP, ?)"));
+  if (b.words) return error(kNotLathe);
   ok();  // a comment or an empty block
 }
 
@@ -210,6 +220,11 @@ void banner() {
 }
 
 void poll() {
+  if (waiting) {
+    if (leadscrew::busy()) return;
+    waiting = false;
+    ok();
+  }
   while (hal::uart::available()) {
     if (hal::uart::overrun()) tainted = true;
     const Reader::Line line = reader.feed(char(hal::uart::read()));
