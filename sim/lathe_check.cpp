@@ -96,22 +96,14 @@ PassResult check_pass(const SpindleEncoder& spindle, const AxisTrace& axis, cons
   for (size_t k = 0; k < counts.size(); ++k) {
     if (counts[k].first > end_cycle) break;
     const uint64_t next = k + 1 < counts.size() ? std::min(counts[k + 1].first, end_cycle + 1) : until;
-    const int64_t want = base + target_steps(t, counts[k].second);
+    int64_t want = base + target_steps(t, counts[k].second);
+    if (end && (*end < base ? want < *end : want > *end)) want = *end;  // the pass stops there
     expect.push_back(want);
     match.push_back(pos.at(next - 1) == want);
   }
   r.counts = match.size();
   size_t lock = match.size();
   while (lock > 0 && match[lock - 1]) --lock;
-  // With an end, the last count's target may pass it: the pass stops there.
-  if (end && lock == match.size() && !match.empty()) {
-    const int64_t e = *end;
-    const bool up = expect.back() > base;
-    if (up ? expect.back() >= e : expect.back() <= e) {
-      lock = match.size() - 1;
-      while (lock > 0 && match[lock - 1]) --lock;
-    }
-  }
   r.locked = lock < match.size();
   r.locked_after = lock;
   if (r.locked) r.lock_cycles = counts[lock].first - r.index_cycle;

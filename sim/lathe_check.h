@@ -14,7 +14,8 @@
 // spindle count after it: the carriage position just before the next count
 // (from the step pin's decoded trace) against base + target(s). The pass is
 // locked from the first count from which every later one matches, up to the
-// end of the pass (the position reaching `end`, when given, or `until`).
+// end of the pass (the position reaching `end`, when given: the target is
+// clamped there, or `until`).
 #pragma once
 #include <cstddef>
 #include <cstdint>

@@ -83,7 +83,7 @@ kInline void step_begin(bool up) {
   Step::high();
 }
 
-__attribute__((noinline)) kFast void halt(Stop why) {
+__attribute__((noinline)) void halt(Stop why) {
   state_ = State::idle;
   stop_ = why;
   pace_off();
@@ -123,7 +123,7 @@ __attribute__((noinline)) kFast void after_step(int8_t n) {
 
 // A locked count against the direction of the one before (the spindle
 // reversed): the update first, then its steps, so its latency is longer.
-__attribute__((noinline)) kFast void reversed_count(bool forward) {
+__attribute__((noinline)) void reversed_count(bool forward) {
   const int8_t n = int8_t(follower.next_delta(forward));
   ahead_forward_ = forward;
   if (n != 0) step_begin(n > 0);
@@ -247,10 +247,22 @@ int32_t target_now() {
 }
 
 // One millisecond of speed control.
+// Decelerates a paced move or catch-up to rest as soon as the acceleration
+// allows (v^2 / 2a further on), ending with `why`. Interrupts off.
+void brake(Stop why) {
+  const int32_t v = velocity_ < 0 ? -velocity_ : velocity_;
+  const int32_t braking = int32_t(uint32_t(v) * uint32_t(v) / (2 * board::kLeadscrewAccel));
+  move_target_ = pos_ + (velocity_ > 0 ? braking + 1 : -braking - 1);
+  move_rate_ = uint32_t(v);
+  state_ = State::moving;
+  stop_ = why;
+}
+
 void control_tick() {
+  const uint16_t tick = tick_++;
   const int32_t count = spindle_count();
-  if (tick_ % kRpmEvery == 0) {
-    const uint8_t at = uint8_t(tick_ / kRpmEvery) % kRpmSamples;
+  if (tick % kRpmEvery == 0) {
+    const uint8_t at = uint8_t(tick / kRpmEvery) % kRpmSamples;
     // counts in 512 ms -> rpm: x 60000 / (512 C)
     rpm_ = int16_t(int32_t(count - count_ring_[at]) * 1875 / (16 * int32_t(counts_per_turn_)));
     count_ring_[at] = count;
@@ -258,13 +270,20 @@ void control_tick() {
   const State s = state_;
   if (s == State::catching) {
     const int32_t target = target_now();
-    if (tick_ % kTargetEvery == 0) {
-      const uint8_t at = uint8_t(tick_ / kTargetEvery) % kTargetSamples;
+    if (tick % kTargetEvery == 0) {
+      const uint8_t at = uint8_t(tick / kTargetEvery) % kTargetSamples;
       target_speed_ = (target - target_ring_[at]) * 125 / 4;  // steps in 32 ms -> steps/s
       target_ring_[at] = target;
     }
     const int32_t target_speed = target_speed_;
     const int32_t e = target - position();
+    if (target_speed > int32_t(board::kLeadscrewMaxRate) || target_speed < -int32_t(board::kLeadscrewMaxRate)) {
+      // The carriage could never catch up: it stops, unlocked.
+      ATOMIC_BLOCK(ATOMIC_RESTORESTATE) {
+        if (state_ == State::catching) brake(Stop::overspeed);
+      }
+      return;
+    }
     int32_t goal = 0;
     if (e != 0 && (target_speed == 0 || (e > 0) == (target_speed > 0))) {
       const int32_t closing = int32_t(closing_speed(e));
@@ -279,7 +298,6 @@ void control_tick() {
   } else {
     velocity_ = 0;
   }
-  ++tick_;
 }
 
 void start_pace_clock() {
@@ -355,13 +373,7 @@ void disengage() {
     if (s == State::locked || s == State::armed || velocity_ == 0) {
       if (s != State::idle) halt(Stop::stopped);
     } else {
-      // Rest as soon as the acceleration allows: v^2 / 2a further on.
-      const int32_t v = velocity_ < 0 ? -velocity_ : velocity_;
-      const int32_t braking = int32_t(uint32_t(v) * uint32_t(v) / (2 * board::kLeadscrewAccel));
-      move_target_ = pos_ + (velocity_ > 0 ? braking + 1 : -braking - 1);
-      move_rate_ = uint32_t(v);
-      state_ = State::moving;
-      stop_ = Stop::stopped;
+      brake(Stop::stopped);
     }
   }
 }
