@@ -19,6 +19,20 @@ struct HeaterWiring<true, Hw> {
 };
 using Heater = HeaterWiring<board::kHeater>;
 
+// The spindle encoder's wiring, on a lathe board (board.h: kSpindleEncoder).
+template <bool Present, typename Hw = board::SpindlePins>
+struct SpindleWiring {
+  static constexpr uint8_t a = am::kNoPin, b = am::kNoPin, index = am::kNoPin, limit = am::kNoPin;
+};
+template <typename Hw>
+struct SpindleWiring<true, Hw> {
+  static constexpr uint8_t a = am::pin_code(Hw::A::port, Hw::A::bit);
+  static constexpr uint8_t b = am::pin_code(Hw::B::port, Hw::B::bit);
+  static constexpr uint8_t index = am::pin_code(Hw::Index::port, Hw::Index::bit);
+  static constexpr uint8_t limit = am::pin_code(Hw::Limit::port, Hw::Limit::bit);
+};
+using Spindle = SpindleWiring<board::kSpindleEncoder>;
+
 template <typename Set>
 struct Describe;
 
@@ -26,9 +40,9 @@ template <typename... Axes>
 struct Describe<AxisSet<Axes...>> {
   static_assert(sizeof...(Axes) <= am::kMaxAxes, "the descriptor holds six axes");
   static constexpr am::BoardDescriptor make() {
-    return am::BoardDescriptor{{'A', 'M', 'B', '1'}, AVRMOTION_BOARD_NAME, AVRMOTION_MCU_NAME,
+    return am::BoardDescriptor{{'A', 'M', 'B', '2'}, AVRMOTION_BOARD_NAME, AVRMOTION_MCU_NAME,
                                F_CPU, board::kBaud, uint8_t(sizeof...(Axes)), Heater::pwm, Heater::adc, Heater::ok,
-                               {Axes::descriptor()...}};
+                               {Axes::descriptor()...}, {Spindle::a, Spindle::b, Spindle::index, Spindle::limit}};
   }
 };
 

@@ -37,7 +37,7 @@ struct AxisDescriptor {
 constexpr uint8_t kMaxAxes = 6;
 
 struct BoardDescriptor {
-  char magic[4];          // "AMB1"
+  char magic[4];          // "AMB2"
   char board[12];         // NUL-terminated
   char mcu[12];           // simavr's part name, NUL-terminated
   uint32_t f_cpu;
@@ -49,9 +49,12 @@ struct BoardDescriptor {
   uint8_t heater_adc;
   uint8_t temp_ok_pin;
   AxisDescriptor axes[kMaxAxes];
+  // A lathe's spindle encoder (kNoPin for all four on other boards): channel
+  // A, channel B (quadrature), the index, the carriage's limit switch.
+  uint8_t spindle_pins[4];
 };
 
 static_assert(sizeof(AxisDescriptor) == 12, "descriptor layout must match on host and AVR");
-static_assert(sizeof(BoardDescriptor) == 112, "descriptor layout must match on host and AVR");
+static_assert(sizeof(BoardDescriptor) == 116, "descriptor layout must match on host and AVR");
 
 }  // namespace am

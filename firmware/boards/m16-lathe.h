@@ -20,6 +20,13 @@ namespace board {
 
 using namespace m16_wiring;
 using SpindleQuadratureB = MotorEncoder;  // INT0
+constexpr bool kSpindleEncoder = true;  // its pins in the descriptor, for the simulator
+struct SpindlePins {
+  using A = SpindleEncoder;
+  using B = SpindleQuadratureB;
+  using Index = SpindleIndex;
+  using Limit = LimitSwitch;
+};
 
 // 800 steps per 3.175 mm: 251968.5 steps per metre, rounded for the
 // descriptor (the simulator's mm); the firmware converts with the exact

@@ -12,8 +12,9 @@
 //     board takes it for B (firmware/boards/m16-lathe.h claims it).
 //   on_a() / on_b() are called by the INT1 / INT0 vectors (the leadscrew's,
 //   firmware/apps/lathe/leadscrew.cpp, so the decode inlines into them) and
-//   return the count the edge makes: +1, -1 or 0. `count` is the sum of
-//   every count since init(); `lost` counts edges the decoder could not be
+//   return the count the edge makes: +1, -1 or 0; the caller adds it to
+//   `count`, the sum of every count since init() (after its own urgent work:
+//   the leadscrew's step). `lost` counts edges the decoder could not be
 //   sure of (below). The index (PD6) is read by the leadscrew at its counts.
 //
 // Quadrature decode
@@ -47,31 +48,24 @@ void init(Mode m);
 // Counts per spindle turn the mode gives for an encoder of `lines` lines.
 inline uint16_t counts_per_line(Mode m) { return m == Mode::quadrature ? 4 : 1; }
 
-inline int8_t on_a() {
-  if (mode == Mode::single) {
-    count = count + 1;
-    return 1;
-  }
+__attribute__((always_inline)) inline int8_t on_a() {
+  if (mode == Mode::single) return 1;
   const uint8_t pins = board::SpindleEncoder::read() ? 1 : 0;
   if (pins == known_a) {
     lost = lost + 1;
     return 0;
   }
   known_a = pins;
-  const int8_t d = pins != known_b ? 1 : -1;
-  count = count + d;
-  return d;
+  return pins != known_b ? 1 : -1;
 }
 
-inline int8_t on_b() {
+__attribute__((always_inline)) inline int8_t on_b() {
   const uint8_t b = board::SpindleQuadratureB::read() ? 1 : 0;
   const uint8_t a = board::SpindleEncoder::read() ? 1 : 0;
   if (b == known_b || a != known_a) lost = lost + 1;
   if (b == known_b) return 0;
   known_b = b;
-  const int8_t d = known_a == b ? 1 : -1;
-  count = count + d;
-  return d;
+  return known_a == b ? 1 : -1;
 }
 
 }  // namespace spindle_encoder

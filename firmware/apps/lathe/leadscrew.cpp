@@ -6,9 +6,9 @@
 // starts and ends passes and moves with interrupts off. Vectors do not nest,
 // so each one sees the others' work whole.
 //
-// Speed over size for this file: the spindle vectors inline the decoder, the
-// follower's update and the step pulses (-O2, as the step engine's file).
-//#pragma GCC optimize("O2")
+// Speed over size for the vectors only: they are built at -O2 with the
+// decoder, the follower's update and the step pulses inlined (kFast); the
+// rest of the file stays at the image's -Os.
 #include "leadscrew.h"
 
 #include <avr/interrupt.h>
@@ -19,6 +19,9 @@
 #include "../../board.h"
 #include "../../devices/spindle_encoder.h"
 #include "../../engine/clock.h"
+
+#define kFast __attribute__((optimize("O2")))
+#define kInline __attribute__((always_inline)) inline
 
 namespace leadscrew {
 namespace {
@@ -33,8 +36,13 @@ int32_t pos_;        // the carriage, steps
 int32_t base_;       // the pass's base: target = base_ + follower.position()
 int32_t end_;        // the pass ends here (has_end_), in direction end_up_
 bool has_end_, end_up_;
+bool reversed_;      // the pass's: positive steps for a backward spindle
 bool dir_up_;        // the direction pin's level: true = +Z
 bool index_was_high_;
+// Locked: the steps the next count asks for if it comes in direction
+// ahead_forward_ (the last count's).
+int8_t ahead_;
+bool ahead_forward_;
 uint16_t counts_per_turn_ = board::kSpindleLines;
 
 // The pace: steps of the direction pace_dir_ (0: none) every pace_period_
@@ -64,78 +72,111 @@ inline void pace_off() {
   hal::step_timer::stop();
 }
 
-// n steps (signed) now, with the driver's timing: the direction set up
-// first when it changes, each pulse high kStepHighCycles, kStepLowCycles
-// between two. After the last pulse the next one is at least a vector's
-// entry and the follower's update away, more than kStepLowCycles.
-inline void issue(int32_t n) {
-  if (n == 0) return;
-  const bool up = n > 0;
-  uint8_t k = uint8_t(up ? n : -n);
+// One step now, with the driver's timing: the direction set up first when
+// it changes (kDirSetupCycles), the pulse's end left to the caller.
+kInline void step_begin(bool up) {
   if (up != dir_up_) {
     Dir::set(up);
     dir_up_ = up;
     __builtin_avr_delay_cycles(board::kDirSetupCycles);
   }
-  for (;;) {
-    Step::high();
-    __builtin_avr_delay_cycles(board::kStepHighCycles);
-    Step::low();
-    if (--k == 0) break;
-    __builtin_avr_delay_cycles(board::kStepLowCycles);
-  }
-  pos_ += n;
+  Step::high();
 }
 
-inline void halt(Stop why) {
+__attribute__((noinline)) void halt(Stop why) {
   state_ = State::idle;
   stop_ = why;
   pace_off();
 }
 
-// One spindle count in direction `forward`.
-inline void on_count(bool forward) {
-  const State s = state_;
-  if (s == State::locked) {
-    if (!board::LimitSwitch::read()) {
-      halt(Stop::limit);
-      return;
-    }
-    const int32_t before = follower.position();
-    follower.edge(forward);
-    int32_t n = follower.position() - before;
-    if (has_end_ && n != 0 && (n > 0) == end_up_) {
-      const int32_t left = end_ - pos_;
-      if (end_up_ ? n >= left : n <= left) {
-        issue(left);
-        halt(Stop::length);
-        return;
-      }
-    }
-    issue(n);
-  } else if (s == State::catching) {
-    follower.edge(forward);
-  } else if (s == State::armed) {
+// The steps after the first of one count (|n| - 1 of them), each a full
+// pulse kStepLowCycles after the one before; none beyond the pass's end.
+__attribute__((noinline)) kFast void burst(int8_t n) {
+  const bool up = n > 0;
+  for (uint8_t k = uint8_t(up ? n : -n) - 1; k != 0; --k) {
+    if (has_end_ && pos_ == end_) return;
+    __builtin_avr_delay_cycles(board::kStepLowCycles);
+    Step::high();
+    __builtin_avr_delay_cycles(board::kStepHighCycles);
+    Step::low();
+    pos_ += up ? 1 : -1;
+  }
+}
+
+// A locked count's bookkeeping: the follower's update and what the next
+// count in the same direction asks for.
+__attribute__((noinline)) kFast void locked_update(bool forward) {
+  spindle_encoder::count = spindle_encoder::count + (forward ? 1 : -1);
+  follower.edge(forward);
+  ahead_ = int8_t(follower.next_delta(forward));
+}
+
+// After a locked count's first step: the pulse ends, the others follow,
+// then the limit switch and the pass's end.
+__attribute__((noinline)) kFast void after_step(int8_t n) {
+  Step::low();
+  pos_ += n > 0 ? 1 : -1;
+  if (n > 1 || n < -1) burst(n);
+  if (!board::LimitSwitch::read()) halt(Stop::limit);
+  else if (has_end_ && pos_ == end_) halt(Stop::length);
+}
+
+// A locked count against the direction of the one before (the spindle
+// reversed): the update first, then its steps, so its latency is longer.
+__attribute__((noinline)) void reversed_count(bool forward) {
+  const int8_t n = int8_t(follower.next_delta(forward));
+  ahead_forward_ = forward;
+  if (n != 0) step_begin(n > 0);
+  __builtin_avr_delay_cycles(board::kStepHighCycles);
+  locked_update(forward);
+  if (n != 0) after_step(n);
+}
+
+// A count while not locked: the spindle's count, the follower's while
+// catching up, the index while armed.
+__attribute__((noinline)) kFast void unlocked_count(int8_t d) {
+  spindle_encoder::count = spindle_encoder::count + d;
+  if (state_ == State::catching) {
+    follower.edge(d > 0);
+  } else if (state_ == State::armed) {
     const bool high = board::SpindleIndex::read();
     if (high && !index_was_high_) state_ = State::catching;
     index_was_high_ = high;
   }
 }
 
+// One spindle count, d = +1 forward or -1 backward. Locked: the count's
+// first step rises before any bookkeeping (ahead_ says what it is), and
+// locked_update() runs while the pulse is high: it takes longer than
+// kStepHighCycles (every pulse's width is measured by
+// tests/sim/test_lathe_timing.cpp).
+kInline void on_count(int8_t d) {
+  if (state_ != State::locked) return unlocked_count(d);
+  const bool forward = d > 0;
+  if (forward != ahead_forward_) return reversed_count(forward);
+  const int8_t n = ahead_;
+  if (n != 0) step_begin(n > 0);
+  locked_update(forward);
+  if (n != 0) after_step(n);
+}
+
 }  // namespace
 }  // namespace leadscrew
 
+ISR(INT1_vect) kFast;
 ISR(INT1_vect) {
   const int8_t d = spindle_encoder::on_a();
-  if (d) leadscrew::on_count(d > 0);
+  if (d) leadscrew::on_count(d);
 }
 
+ISR(INT0_vect) kFast;
 ISR(INT0_vect) {
   const int8_t d = spindle_encoder::on_b();
-  if (d) leadscrew::on_count(d > 0);
+  if (d) leadscrew::on_count(d);
 }
 
 // The pace: one step of a move or of the catch-up.
+ISR(TIMER1_COMPA_vect) kFast;
 ISR(TIMER1_COMPA_vect) {
   using namespace leadscrew;
   OCR1A = pace_period_;
@@ -145,9 +186,14 @@ ISR(TIMER1_COMPA_vect) {
     halt(Stop::limit);
     return;
   }
-  issue(d);
+  step_begin(d > 0);
+  __builtin_avr_delay_cycles(board::kStepHighCycles);
+  Step::low();
+  pos_ += d;
   if (state_ == State::catching) {
     if (pos_ == base_ + follower.position()) {
+      ahead_forward_ = d > 0 ? !reversed_ : reversed_;
+      ahead_ = int8_t(follower.next_delta(ahead_forward_));
       state_ = State::locked;
       pace_off();
     } else if (has_end_ && pos_ == end_) {
@@ -201,10 +247,22 @@ int32_t target_now() {
 }
 
 // One millisecond of speed control.
+// Decelerates a paced move or catch-up to rest as soon as the acceleration
+// allows (v^2 / 2a further on), ending with `why`. Interrupts off.
+void brake(Stop why) {
+  const int32_t v = velocity_ < 0 ? -velocity_ : velocity_;
+  const int32_t braking = int32_t(uint32_t(v) * uint32_t(v) / (2 * board::kLeadscrewAccel));
+  move_target_ = pos_ + (velocity_ > 0 ? braking + 1 : -braking - 1);
+  move_rate_ = uint32_t(v);
+  state_ = State::moving;
+  stop_ = why;
+}
+
 void control_tick() {
+  const uint16_t tick = tick_++;
   const int32_t count = spindle_count();
-  if (tick_ % kRpmEvery == 0) {
-    const uint8_t at = uint8_t(tick_ / kRpmEvery) % kRpmSamples;
+  if (tick % kRpmEvery == 0) {
+    const uint8_t at = uint8_t(tick / kRpmEvery) % kRpmSamples;
     // counts in 512 ms -> rpm: x 60000 / (512 C)
     rpm_ = int16_t(int32_t(count - count_ring_[at]) * 1875 / (16 * int32_t(counts_per_turn_)));
     count_ring_[at] = count;
@@ -212,13 +270,20 @@ void control_tick() {
   const State s = state_;
   if (s == State::catching) {
     const int32_t target = target_now();
-    if (tick_ % kTargetEvery == 0) {
-      const uint8_t at = uint8_t(tick_ / kTargetEvery) % kTargetSamples;
+    if (tick % kTargetEvery == 0) {
+      const uint8_t at = uint8_t(tick / kTargetEvery) % kTargetSamples;
       target_speed_ = (target - target_ring_[at]) * 125 / 4;  // steps in 32 ms -> steps/s
       target_ring_[at] = target;
     }
     const int32_t target_speed = target_speed_;
     const int32_t e = target - position();
+    if (target_speed > int32_t(board::kLeadscrewMaxRate) || target_speed < -int32_t(board::kLeadscrewMaxRate)) {
+      // The carriage could never catch up: it stops, unlocked.
+      ATOMIC_BLOCK(ATOMIC_RESTORESTATE) {
+        if (state_ == State::catching) brake(Stop::overspeed);
+      }
+      return;
+    }
     int32_t goal = 0;
     if (e != 0 && (target_speed == 0 || (e > 0) == (target_speed > 0))) {
       const int32_t closing = int32_t(closing_speed(e));
@@ -233,7 +298,6 @@ void control_tick() {
   } else {
     velocity_ = 0;
   }
-  ++tick_;
 }
 
 void start_pace_clock() {
@@ -270,6 +334,7 @@ Refusal engage(const am::Ratio& ratio, bool reversed, int32_t length_steps, uint
   if (!follower.reset(ratio, reversed, am::start_phase(start, starts, counts_per_turn_))) return Refusal::phase_range;
   ATOMIC_BLOCK(ATOMIC_RESTORESTATE) {
     base_ = pos_;
+    reversed_ = reversed;
     end_up_ = !reversed;
     end_ = reversed ? pos_ - length_steps : pos_ + length_steps;
     has_end_ = length_steps != 0;
@@ -308,13 +373,7 @@ void disengage() {
     if (s == State::locked || s == State::armed || velocity_ == 0) {
       if (s != State::idle) halt(Stop::stopped);
     } else {
-      // Rest as soon as the acceleration allows: v^2 / 2a further on.
-      const int32_t v = velocity_ < 0 ? -velocity_ : velocity_;
-      const int32_t braking = int32_t(uint32_t(v) * uint32_t(v) / (2 * board::kLeadscrewAccel));
-      move_target_ = pos_ + (velocity_ > 0 ? braking + 1 : -braking - 1);
-      move_rate_ = uint32_t(v);
-      state_ = State::moving;
-      stop_ = Stop::stopped;
+      brake(Stop::stopped);
     }
   }
 }

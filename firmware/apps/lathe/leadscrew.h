@@ -53,7 +53,7 @@
 namespace leadscrew {
 
 enum class State : uint8_t { idle, moving, armed, catching, locked };
-enum class Stop : uint8_t { none, done, length, limit, stopped };
+enum class Stop : uint8_t { none, done, length, limit, stopped, overspeed };
 enum class Refusal : uint8_t { none, busy, bad_start, bad_length, too_steep, phase_range, limit, bad_rate };
 
 void init();

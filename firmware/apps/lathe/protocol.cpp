@@ -9,7 +9,9 @@
 //   ENCODER C<lines> E<1|4> the spindle encoder: one channel counted once
 //                           per line, or quadrature x4.
 //   STOP                    disengage(): a pass stops, a move decelerates.
-//   ? (or STATUS)           the status line.
+//   WAIT                    answered once the pass or move has ended (the
+//                           lines after it wait too).
+//   ? (or STATUS)           the status line, then ok.
 // A motion line while a pass or move runs is refused (`error: busy`): the
 // sender asks `?` until `state=idle`. Words follow the G-code grammar
 // (core/text/gcode_parser.h: parse_gcode reads them, so its checks apply);
@@ -33,6 +35,7 @@ namespace {
 using Reader = am::LineReader<64>;
 Reader reader;
 bool tainted;  // bytes were lost: refuse lines until one ends with the ring empty
+bool waiting;  // a WAIT is answered when the leadscrew is idle
 
 void ok() { hal::uart::write_P(PSTR("ok\n")); }
 
@@ -49,7 +52,7 @@ const char* parse_error_text(am::GcodeError e) {
     case am::GcodeError::unsupported_word: return PSTR("unsupported word letter");
     case am::GcodeError::bad_number: return PSTR("bad number");
     case am::GcodeError::out_of_range: return PSTR("number out of range");
-    case am::GcodeError::bad_line_number: return PSTR("N must be first and a whole number");
+    case am::GcodeError::bad_line_number: return PSTR("bad N word");
     case am::GcodeError::modal_group_conflict: return PSTR("two codes of one modal group");
     case am::GcodeError::repeated_word: return PSTR("word given twice");
     default: return PSTR("unsupported G or M code");
@@ -58,9 +61,9 @@ const char* parse_error_text(am::GcodeError e) {
 
 const char* refusal_text(leadscrew::Refusal r) {
   switch (r) {
-    case leadscrew::Refusal::busy: return PSTR("busy (a pass or move runs)");
+    case leadscrew::Refusal::busy: return PSTR("busy");
     case leadscrew::Refusal::bad_start: return PSTR("E must be below D");
-    case leadscrew::Refusal::too_steep: return PSTR("more than 15 leadscrew steps per spindle count");
+    case leadscrew::Refusal::too_steep: return PSTR("over 15 steps per count");
     case leadscrew::Refusal::phase_range: return PSTR("start phase out of range");
     case leadscrew::Refusal::limit: return PSTR("limit switch hit");
     case leadscrew::Refusal::bad_rate: return PSTR("feed must be above 0");
@@ -73,7 +76,12 @@ const char* refusal_text(leadscrew::Refusal r) {
 constexpr uint32_t kStepsNum = board::kLeadscrewCounts.num * board::kLeadscrewPitch.den;
 constexpr uint32_t kStepsDen = board::kLeadscrewCounts.den * board::kLeadscrewPitch.num * 10;
 
-bool mm_to_steps(int32_t length, int32_t& steps) { return am::scale_round(length, kStepsNum, kStepsDen, steps); }
+// Any parsed length (|v| <= 214748.3647 mm) is at most 54.1 M steps: it fits.
+int32_t mm_to_steps(int32_t length) {
+  int32_t steps = 0;
+  am::scale_round(length, kStepsNum, kStepsDen, steps);
+  return steps;
+}
 
 bool whole(const am::GcodeBlock& b, char letter, int32_t lo, int32_t hi, int32_t& out) {
   const int32_t v = b.get(letter);
@@ -83,25 +91,25 @@ bool whole(const am::GcodeBlock& b, char letter, int32_t lo, int32_t hi, int32_t
 }
 
 constexpr uint32_t bit(char c) { return am::gcode_letter_bit(c); }
+const char kUnusedWord[] PROGMEM = "word not used here";
 
 void thread(const am::GcodeBlock& b) {
-  if (b.words & ~(bit('Z') | bit('K') | bit('P') | bit('D') | bit('E'))) return error(PSTR("word not used by G33"));
-  if (!b.has('Z') || b.has('K') == b.has('P')) return error(PSTR("G33 needs Z and one of K (mm) or P (TPI)"));
+  if (b.words & ~(bit('Z') | bit('K') | bit('P') | bit('D') | bit('E'))) return error(kUnusedWord);
+  if (!b.has('Z') || b.has('K') == b.has('P')) return error(PSTR("G33 needs Z and K or P"));
   if (leadscrew::busy()) return error(refusal_text(leadscrew::Refusal::busy));
   int32_t starts = 1, start = 0;
-  if (b.has('D') && !whole(b, 'D', 1, 255, starts)) return error(PSTR("D (starts) must be a whole 1..255"));
-  if (b.has('E') && !whole(b, 'E', 0, 254, start)) return error(PSTR("E (start) must be a whole 0..254"));
+  if (b.has('D') && !whole(b, 'D', 1, 255, starts)) return error(PSTR("D must be 1..255"));
+  if (b.has('E') && !whole(b, 'E', 0, 254, start)) return error(PSTR("E must be 0..254"));
   const int32_t pitch = b.get(b.has('K') ? 'K' : 'P');
   if (pitch <= 0) return error(PSTR("pitch must be above 0"));
-  int32_t end;
-  if (!mm_to_steps(b.get('Z'), end)) return error(PSTR("Z out of range"));
+  const int32_t end = mm_to_steps(b.get('Z'));
   const int32_t here = leadscrew::position();
-  if (end == here) return error(PSTR("G33 Z is where the carriage is"));
+  if (end == here) return error(PSTR("Z is here"));
   // K: um = K / 10; P: um = 25400 / (P / 10000).
   const am::Pitch p = b.has('K') ? am::Pitch{uint32_t(pitch), 10} : am::Pitch{254000000ul, uint32_t(pitch)};
   const am::ThreadRequest request{p, uint8_t(starts), end < here ? am::Hand::right : am::Hand::left};
   const am::GearRatio g = am::gear_ratio_exact(leadscrew::machine(), request);
-  if (g.status != am::RatioStatus::exact) return error(PSTR("pitch not exact in 32 bits on this machine"));
+  if (g.status != am::RatioStatus::exact) return error(PSTR("ratio not exact in 32 bits"));
   const leadscrew::Refusal r =
       leadscrew::engage(g.ratio, g.reversed, end < here ? here - end : end - here, uint8_t(start), uint8_t(starts));
   if (r != leadscrew::Refusal::none) return error(refusal_text(r));
@@ -109,10 +117,10 @@ void thread(const am::GcodeBlock& b) {
 }
 
 void position_move(const am::GcodeBlock& b) {
-  if (b.words & ~(bit('Z') | bit('F'))) return error(PSTR("word not used by G0"));
+  if (b.words & ~(bit('Z') | bit('F'))) return error(kUnusedWord);
   if (!b.has('Z')) return error(PSTR("G0 needs Z"));
-  int32_t end, rate = int32_t(board::kLeadscrewMaxRate);
-  if (!mm_to_steps(b.get('Z'), end)) return error(PSTR("Z out of range"));
+  const int32_t end = mm_to_steps(b.get('Z'));
+  int32_t rate = int32_t(board::kLeadscrewMaxRate);
   if (b.has('F')) {
     // mm/min -> steps/s
     if (b.get('F') <= 0 || !am::scale_round(b.get('F'), kStepsNum, kStepsDen * 60, rate) || rate == 0)
@@ -124,24 +132,24 @@ void position_move(const am::GcodeBlock& b) {
 }
 
 void encoder(const am::GcodeBlock& b) {
-  if (b.words & ~(bit('C') | bit('E'))) return error(PSTR("word not used by ENCODER"));
+  if (b.words & ~(bit('C') | bit('E'))) return error(kUnusedWord);
   int32_t lines, edges;
   if (!b.has('C') || !b.has('E') || !whole(b, 'C', 1, 16383, lines) || !whole(b, 'E', 1, 4, edges) ||
       (edges != 1 && edges != 4))
-    return error(PSTR("ENCODER needs C (lines 1..16383) and E1 or E4"));
+    return error(PSTR("ENCODER needs C1..16383, E1 or E4"));
   if (!leadscrew::set_encoder(edges == 4, uint16_t(lines))) return error(refusal_text(leadscrew::Refusal::busy));
   ok();
 }
 
 void status() {
   static const char kStates[] PROGMEM = "idle\0    moving\0  armed\0   catching\0locked";
-  static const char kStops[] PROGMEM = "none\0   done\0   length\0 limit\0  stopped";
+  static const char kStops[] PROGMEM = "none\0     done\0     length\0   limit\0    stopped\0  overspeed";
   hal::uart::write_P(PSTR("state="));
   hal::uart::write_P(kStates + 9 * uint8_t(leadscrew::state()));
   const int32_t steps = leadscrew::position();
   hal::uart::write_P(PSTR(" z="));
   hal::uart::write_i32(steps);
-  int32_t um;
+  int32_t um = 0;  // positions stay within the parser's range (see above): it fits
   am::scale_round(steps, kStepsDen / 10, kStepsNum, um);
   char mm[13];
   am::format_fixed(mm, um, 3);
@@ -156,8 +164,9 @@ void status() {
   hal::uart::write_P(PSTR(" lost="));
   hal::uart::write_u32(leadscrew::lost_counts());
   hal::uart::write_P(PSTR(" last="));
-  hal::uart::write_P(kStops + 8 * uint8_t(leadscrew::last_stop()));
+  hal::uart::write_P(kStops + 10 * uint8_t(leadscrew::last_stop()));
   hal::uart::write('\n');
+  ok();
 }
 
 // "G33" (any case, blanks after G allowed) at p: p moves past it.
@@ -173,6 +182,8 @@ bool g33(const char*& p) {
   return true;
 }
 
+const char kNotLathe[] PROGMEM = "not a lathe command";
+
 void on_line(const char* p) {
   while (am::detail::blank(*p)) ++p;
   if (!*p) return ok();
@@ -180,6 +191,10 @@ void on_line(const char* p) {
   if (am::detail::keyword(p, "STOP")) {
     leadscrew::disengage();
     return ok();
+  }
+  if (am::detail::keyword(p, "WAIT")) {
+    waiting = true;
+    return;
   }
   const bool is_encoder = am::detail::keyword(p, "ENCODER");
   const bool is_thread = !is_encoder && g33(p);
@@ -190,12 +205,12 @@ void on_line(const char* p) {
     const am::GcodeCode c = b.code[g];
     if (c != am::GcodeCode::none && !(g == uint8_t(am::GcodeGroup::motion) && c == am::GcodeCode::g0 &&
                                       !is_encoder && !is_thread))
-      return error(PSTR("not a lathe command (G33, G0, ENCODER, STOP, ?)"));
+      return error(kNotLathe);
   }
   if (is_encoder) return encoder(b);
   if (is_thread) return thread(b);
   if (b.group(am::GcodeGroup::motion) == am::GcodeCode::g0) return position_move(b);
-  if (b.words) return error(PSTR("not a lathe command (G33, G0, ENCODER, STOP, ?)"));
+  if (b.words) return error(kNotLathe);
   ok();  // a comment or an empty block
 }
 
@@ -210,6 +225,11 @@ void banner() {
 }
 
 void poll() {
+  if (waiting) {
+    if (leadscrew::busy()) return;
+    waiting = false;
+    ok();
+  }
   while (hal::uart::available()) {
     if (hal::uart::overrun()) tainted = true;
     const Reader::Line line = reader.feed(char(hal::uart::read()));
@@ -218,9 +238,9 @@ void poll() {
       tainted = hal::uart::available();
       error(PSTR("serial overrun, line dropped"));
     } else if (line == Reader::Line::too_long) {
-      error(PSTR("line too long (max 64 characters)"));
+      error(PSTR("line too long (max 64)"));
     } else if (line == Reader::Line::bad_byte) {
-      error(PSTR("control or non-ASCII byte in line"));
+      error(PSTR("bad byte in line"));
     } else {
       on_line(reader.text());
     }
