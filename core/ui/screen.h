@@ -74,6 +74,18 @@ struct Screen {
   // it needs), with a '-' for negatives; returns the column after it. A
   // value too wide for its field shows as '*' in the field's first column.
   uint8_t number(uint8_t row, uint8_t col, int32_t value, uint8_t width, uint8_t decimals) {
+    char text[12];
+    const uint8_t n = format(text, value, decimals);
+    if (width == 0) width = n;
+    const uint8_t end = uint8_t(col + width);
+    for (uint8_t i = 0; col < end; ++col, ++i)
+      put(row, col, n > width ? (i ? ' ' : '*') : i + n < width ? ' ' : text[i + n - width]);
+    return end;
+  }
+
+  // value / 10^decimals as text ("-0.05", "12.500"); returns its length (at
+  // most 12: a '-', ten digits and the point).
+  static uint8_t format(char* text, int32_t value, uint8_t decimals) {
     char digits[12];
     uint8_t n = 0;
     uint32_t mag = value < 0 ? uint32_t(0) - uint32_t(value) : uint32_t(value);
@@ -83,16 +95,8 @@ struct Screen {
       mag /= 10;
     } while (mag || n <= decimals);
     if (value < 0) digits[n++] = '-';
-    if (width == 0) width = n;
-    uint8_t end = uint8_t(col + width);
-    if (n > width) {
-      put(row, col, '*');
-      n = 0;
-      ++col;
-    }
-    while (col + n < end) put(row, col++, ' ');
-    while (n) put(row, col++, digits[--n]);
-    return end;
+    for (uint8_t i = 0; i < n; ++i) text[i] = digits[n - 1 - i];
+    return n;
   }
 
   // A progress bar over the whole row: `filled` of kBarSteps columns lit.

@@ -8,14 +8,18 @@
 //   carriage at once while it moves (emergency stop); C deletes the last
 //   character typed, on an empty field or elsewhere it goes back (while the
 //   carriage moves it stops it too); A switches a pitch between mm and TPI,
-//   or steps forward through a table or the settings; B opens the pitch
-//   table, or steps back; '*' first in a move's distance makes it negative.
+//   or steps forward through the settings (B back); B on a pitch or feed
+//   entry types the table's next value (tables.h) in place of the text, to
+//   be taken with D or edited; '*' first in a move's distance makes it
+//   negative.
 //
 // Screens (2 x 16)
-//   menu       "1Cut 2Move 3Set" + the live line (spindle rpm, carriage Z mm)
-//   kind       "1Feed 2Fine 3Thr": a feed (mm per turn, typed or from the
-//              feed table), the seed's fine feed 0.04 mm per turn, a thread
-//              (pitch in mm or TPI, typed or from the ISO or TPI table)
+//   menu       "1Thr 2Feed 3Move" + the live line (spindle rpm, carriage Z
+//              mm): a thread (pitch in mm or TPI, typed or from the ISO or
+//              TPI table), a feed (mm per turn, typed or from the feed
+//              table, which holds the seed's 0.04 and 0.08), a move; A opens
+//              the settings
+//   entry      the prompt, and the text typed so far with a '_' cursor
 //   hand       "1Right 2Left"
 //   length     mm with 2 decimals, 0 = until stopped (D or the limit switch);
 //              the ratio is computed here (core/lathe/ratio.h's
@@ -72,7 +76,7 @@ __attribute__((noinline)) inline int32_t scale(int32_t v, uint32_t m, uint32_t d
 
 // The settings' machines have whole counts per turn (below 2^21.3) and a
 // lead's denominator of at most 1000 (0.1 TPI), so both products fit 32 bits.
-inline int32_t um_to_steps(const Machine& m, int32_t um) {
+__attribute__((noinline)) inline int32_t um_to_steps(const Machine& m, int32_t um) {
   return scale(um, m.leadscrew_counts.num * m.leadscrew.den, m.leadscrew.num);
 }
 
@@ -80,7 +84,7 @@ inline int32_t steps_to_um(const Machine& m, int32_t steps) {
   return scale(steps, m.leadscrew.num, m.leadscrew.den * m.leadscrew_counts.num);
 }
 
-enum class State : uint8_t { menu, kind, entry, table, hand, ready, cutting, done, moving, settings, message };
+enum class State : uint8_t { menu, entry, hand, ready, cutting, done, moving, settings, message };
 
 // What a number typed on the entry screen is for (entry_row()'s order).
 enum class Entry : uint8_t { feed, pitch_mm, pitch_tpi, length, move, setting };
@@ -105,7 +109,6 @@ constexpr uint8_t kEntryChars = 8;      // digits, '.', '-'
 constexpr int32_t kTooLarge = 1000000;  // a typed number saturates here
 constexpr uint16_t kMessageMs = 1500;
 constexpr uint16_t kRefreshMs = 100;
-constexpr uint16_t kFineFeedUm = 40;  // the seed's fine feed
 
 template <class L>
 class Workflow {
@@ -153,7 +156,18 @@ class Workflow {
   AM_UI_OUTLINE void begin_entry(Entry e) {
     entry_ = e;
     typed_len_ = 0;
+    row_ = 0xFF;  // the table's first row comes next
     go(State::entry);
+  }
+
+  // The entry's table (feed, metric, inch: the lists' order), one distinct
+  // value on from the last one typed from it; the text becomes that value.
+  AM_UI_OUTLINE void next_row() {
+    const List list = List(entry_);
+    const uint16_t was = row_ < list_size(list) ? table_value(list, row_) : 0;
+    do row_ = uint8_t(row_ + 1 >= list_size(list) ? 0 : row_ + 1);
+    while (table_value(list, row_) == was);
+    typed_len_ = Screen::format(typed_, table_value(list, row_), entry_ == Entry::pitch_tpi ? 1 : 3);
   }
 
   // Time-driven changes: a message times out, a motion ends.
@@ -173,50 +187,37 @@ class Workflow {
     const bool digit = k >= '0' && k <= '9';
     switch (state_) {
       case State::menu:
-        if (k == '1') go(State::kind);
-        if (k == '2') begin_entry(Entry::move);
-        if (k == '3') {
+        if (k == '1') begin_entry(Entry::pitch_mm);
+        if (k == '2') begin_entry(Entry::feed);
+        if (k == '3') begin_entry(Entry::move);
+        if (k == 'A') {
           field_ = 0;
           changed_ = false;
           go(State::settings);
         }
-        break;
-      case State::kind:
-        if (k == '1') begin_entry(Entry::feed);
-        if (k == '2') choose(pitch_um(kFineFeedUm));
-        if (k == '3') begin_entry(Entry::pitch_mm);
-        if (k == 'C') go(State::menu);
         break;
       case State::entry:
         if (digit || (k == '#' && !typed_point()) || (k == '*' && entry_ == Entry::move && typed_len_ == 0)) {
           if (typed_len_ < kEntryChars) typed_[typed_len_++] = k == '#' ? '.' : k == '*' ? '-' : k;
         } else if (k == 'C') {
           if (typed_len_ == 0) go(entry_ == Entry::length ? State::hand : entry_ == Entry::setting ? State::settings
-                                   : entry_ == Entry::move ? State::menu : State::kind);
+                                                                                           : State::menu);
           else --typed_len_;
         } else if (k == 'A' && (entry_ == Entry::pitch_mm || entry_ == Entry::pitch_tpi)) {
           begin_entry(entry_ == Entry::pitch_mm ? Entry::pitch_tpi : Entry::pitch_mm);
         } else if (k == 'B' && entry_ <= Entry::pitch_tpi) {
-          list_ = List(entry_);  // feed, metric, inch: the lists' order
-          row_ = 0;
-          go(State::table);
+          next_row();
         } else if (k == 'D') {
           int32_t v = 0;
           if (parse(v)) accept(v);
         }
-        break;
-      case State::table:
-        if (k == 'A') row_ = uint8_t(row_ + 1 == list_size(list_) ? 0 : row_ + 1);
-        if (k == 'B') row_ = uint8_t((row_ == 0 ? list_size(list_) : row_) - 1);
-        if (k == 'C') go(State::entry);
-        if (k == 'D') choose(list_pitch(list_, row_));
         break;
       case State::hand:
         if (k == '1' || k == '2') {
           left_ = k == '2';
           begin_entry(Entry::length);
         }
-        if (k == 'C') go(State::kind);
+        if (k == 'C') go(State::menu);
         break;
       case State::ready:
         if (k == 'D') {
@@ -326,7 +327,7 @@ class Workflow {
       length_steps_ = um_to_steps(m, v * 10);
       const GearRatio g = gear_ratio_exact(m, {pitch_, 1, left_ ? Hand::left : Hand::right});
       if (g.status != RatioStatus::exact) {
-        message(AM_TEXT("Ratio not exact"), AM_TEXT("pitch or setup?"), State::kind);
+        message(AM_TEXT("Ratio not exact"), AM_TEXT("pitch or setup?"), State::menu);
         return;
       }
       ratio_ = g.ratio;
@@ -364,11 +365,7 @@ class Workflow {
     Screen& s = screen_;
     switch (state_) {
       case State::menu:
-        s.line(0, AM_TEXT("1Cut 2Move 3Set"));
-        live();
-        break;
-      case State::kind:
-        s.line(0, AM_TEXT("1Feed 2Fine 3Thr"));
+        s.line(0, AM_TEXT("1Thr 2Feed 3Move"));
         live();
         break;
       case State::entry: {
@@ -376,9 +373,6 @@ class Workflow {
         for (uint8_t i = 0; i < kCols; ++i) s.put(1, i, i < typed_len_ ? typed_[i] : i == typed_len_ ? '_' : ' ');
         break;
       }
-      case State::table:
-        draw_row(s, list_, row_);
-        break;
       case State::hand:
         s.line(0, AM_TEXT("Hand (feed dir)"));
         s.line(1, AM_TEXT("1Right 2Left"));
@@ -434,8 +428,7 @@ class Workflow {
   State state_;
   State back_;
   Entry entry_;
-  List list_;
-  uint8_t row_;
+  uint8_t row_;  // the table row typed last, 0xFF for none
   uint8_t field_;
   bool changed_;
   bool left_;

@@ -42,7 +42,6 @@ constexpr uint8_t kSetDdram = 0x80;
 constexpr uint8_t kBusy = 0x80;
 constexpr uint8_t kUnknown = 0xFF;  // the address counter is not in the display RAM
 
-bool timed_ = false;
 uint8_t address_ = kUnknown;  // where the controller's address counter points
 uint32_t issued_ = 0;         // clock::now() at the last instruction
 uint32_t wait_ = 0;           // its execution time, in ticks (fallback)
@@ -90,13 +89,7 @@ uint8_t read_status() {
   return status;
 }
 
-bool ready() {
-  const bool late = clock::reached(issued_ + wait_);
-  if (timed_) return late;
-  if ((read_status() & kBusy) == 0) return true;
-  if (late) timed_ = true;
-  return late;
-}
+bool ready() { return (read_status() & kBusy) == 0 || clock::reached(issued_ + wait_); }
 
 // Twice an instruction's execution time (37 us, or 1.52 ms for clear).
 void wait_executed(uint16_t instruction_count) {
@@ -163,6 +156,5 @@ bool poll(am::ui::Screen& screen) {
   return screen.dirty == 0;
 }
 
-bool timed() { return timed_; }
 
 }  // namespace hd44780

@@ -21,10 +21,11 @@
 //   controller tolerates (it has minimum widths, no maximum). Returns true
 //   when the display shows the whole screen.
 //   Busy flag with a timeout fallback: the driver reads BF (RW high) before
-//   each operation; if BF still reads 1 twice the datasheet's execution time
-//   after the last instruction (RW not wired, a broken line), it stops
-//   reading and waits that long after every instruction from then on
-//   (timed()).
+//   each operation and goes on when it reads 0, or when twice the
+//   datasheet's execution time has passed since the last instruction
+//   whatever it reads (RW not wired, a broken line, no display: the lines'
+//   pull-ups read busy), so a display without a working BF is driven by
+//   the datasheet's timing.
 //
 // Why a character per call: the spindle's edge interrupt must keep its
 // latency and the main loop its pace; the whole screen (32 characters and
@@ -38,6 +39,5 @@ namespace hd44780 {
 
 void init();
 bool poll(am::ui::Screen& screen);
-bool timed();
 
 }  // namespace hd44780

@@ -48,7 +48,7 @@ struct Lathe {
     return uint16_t(r < 0 ? -r : r);
   }
   static bool move_to(int32_t steps, uint32_t rate) { return leadscrew::move_to(steps, rate) == leadscrew::Refusal::none; }
-  static uint16_t ms() { return uint16_t(clock::now() / clock::ticks_per_ms); }
+  __attribute__((noinline)) static uint16_t ms() { return uint16_t(clock::now() / clock::ticks_per_ms); }
   static void save(const am::ui::Settings& s) {
     hal::eeprom::update(kSettingsAddress, &s, sizeof s);
     apply_encoder(s);
