@@ -49,6 +49,37 @@ struct Positions {
 
 }  // namespace
 
+PulseTiming pulse_timing(const std::vector<PinEdge>& step, const std::vector<PinEdge>& dir) {
+  PulseTiming t;
+  auto lower = [](uint64_t& min, uint64_t v) {
+    if (min == 0 || v < min) min = v;
+  };
+  uint64_t rise = 0, fall = 0, dir_change = 0;
+  bool high = false, dir_pending = false;
+  size_t d = 0;
+  for (const PinEdge& e : step) {
+    for (; d < dir.size() && dir[d].cycle <= e.cycle; ++d) {
+      if (high) t.dir_changed_in_pulse = true;
+      dir_change = dir[d].cycle;
+      dir_pending = true;
+      ++t.dir_changes;
+    }
+    if (e.level) {
+      if (fall) lower(t.min_low, e.cycle - fall);
+      if (dir_pending) lower(t.min_dir_setup, e.cycle - dir_change);
+      dir_pending = false;
+      rise = e.cycle;
+      high = true;
+      ++t.pulses;
+    } else if (high) {
+      lower(t.min_high, e.cycle - rise);
+      fall = e.cycle;
+      high = false;
+    }
+  }
+  return t;
+}
+
 PassResult check_pass(const SpindleEncoder& spindle, const AxisTrace& axis, const std::vector<PinEdge>& step_pin,
                       const ThreadSpec& t, int64_t base, uint64_t armed, uint64_t until, const int64_t* end) {
   PassResult r;

@@ -55,6 +55,17 @@ struct PassResult {
 PassResult check_pass(const SpindleEncoder& spindle, const AxisTrace& axis, const std::vector<PinEdge>& step_pin,
                       const ThreadSpec& t, int64_t base, uint64_t armed, uint64_t until, const int64_t* end = nullptr);
 
+// A step/dir driver's timing on the pins: the shortest high time of a step
+// pulse, the shortest low time between two, the shortest time from a
+// direction change to the next rise, whether the direction ever changed
+// while the step line was high (all cycles; 0: none seen).
+struct PulseTiming {
+  uint64_t min_high = 0, min_low = 0, min_dir_setup = 0;
+  size_t pulses = 0, dir_changes = 0;
+  bool dir_changed_in_pulse = false;
+};
+PulseTiming pulse_timing(const std::vector<PinEdge>& step, const std::vector<PinEdge>& dir);
+
 // The axis's position at a cycle: the sum of its steps at or before it.
 int64_t position_at(const AxisTrace& axis, uint64_t cycle);
 

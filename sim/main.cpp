@@ -15,6 +15,7 @@
 #include "progress.h"
 #include "pty_run.h"
 #include "report.h"
+#include "spindle_encoder.h"
 #include "thermal_plant.h"
 #include "vcd.h"
 
@@ -27,7 +28,8 @@ void usage() {
                "       avrmotion-sim (--board NAME | --elf FILE) --pty [--link PATH] [--speed N|max] [--linger S]\n"
                "                     [--report FILE] [--plot FILE.svg] [--vcd ...] [--max-seconds S] [--progress]\n"
                "                     [--thermal-initial C] [--thermal-fault NAME@S] [--thermal-fan F@S]\n"
-               "  --board NAME        run " AVRMOTION_FIRMWARE_DIR "/avrmotion-NAME.elf (uno, m32, m16, m16-8mhz)\n"
+               "                     [--spindle-lines N] [--spindle-quadrature] [--spindle-rpm RPM@S]... [--spindle-jitter US]\n"
+               "  --board NAME        run " AVRMOTION_FIRMWARE_DIR "/avrmotion-NAME.elf (uno, m32, m16, m16-lathe, ...)\n"
                "  --input FILE        command lines to send (default: standard input); '#' starts a comment\n"
                "  --report FILE       JSON report (default: standard output)\n"
                "  --plot FILE.svg     pictures: per axis position, velocity, acceleration, step intervals\n"
@@ -48,6 +50,12 @@ void usage() {
                "  --thermal-fault NAME@S  from S seconds on: open, shorted (sensor), disconnected,\n"
                "                      stuck_on (heater); may be given more than once\n"
                "  --thermal-fan F@S   part fan at F (0..1) from S seconds on; more than once allowed\n"
+               "  a board with a spindle encoder (m16-lathe) runs a simulated spindle (docs/lathe.md):\n"
+               "  --spindle-lines N   encoder lines per turn (default 40, the seed's disc)\n"
+               "  --spindle-quadrature  two channels a quarter line apart (default: one channel)\n"
+               "  --spindle-rpm RPM@S rpm at S seconds, linear between points, negative turns backward;\n"
+               "                      more than once (default 0@0: at rest)\n"
+               "  --spindle-jitter US each encoder edge up to +-US microseconds off its time\n"
                "exit: 0 ran to the end (--pty: the client closed, or SIGINT/SIGTERM), 2 bad usage or image, 3 budget spent, 4 CPU stopped,\n"
                "      5 simavr reported an error (a dropped event: the run is not valid)\n";
 }
@@ -80,6 +88,9 @@ int main(int argc, char** argv) {
   sim::ThermalParams thermal;
   std::vector<std::pair<double, sim::ThermalFault>> faults;
   std::vector<std::pair<double, double>> fans;
+  sim::SpindleParams spindle;
+  spindle.profile.clear();
+  bool spindle_given = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const auto value = [&]() -> std::string {
@@ -103,6 +114,31 @@ int main(int argc, char** argv) {
     else if (a == "--speed") speed_text = value();
     else if (a == "--linger") linger = std::atof(value().c_str()), linger_given = true;
     else if (a == "--thermal-initial") thermal.initial_c = std::atof(value().c_str());
+    else if (a == "--spindle-lines") {
+      const int n = std::atoi(value().c_str());
+      if (n < 1 || n > 16383) {
+        usage();
+        return 2;
+      }
+      spindle.lines = uint16_t(n), spindle_given = true;
+    } else if (a == "--spindle-quadrature") spindle.quadrature = true, spindle_given = true;
+    else if (a == "--spindle-jitter") spindle.jitter_us = std::atof(value().c_str()), spindle_given = true;
+    else if (a == "--spindle-rpm") {
+      std::string rpm;
+      double at = 0;
+      char* end = nullptr;
+      if (!split_at(value(), rpm, at)) {
+        usage();
+        return 2;
+      }
+      const double r = std::strtod(rpm.c_str(), &end);
+      if (*end || (!spindle.profile.empty() && at <= spindle.profile.back().t_s)) {
+        usage();
+        return 2;
+      }
+      spindle.profile.push_back({at, r});
+      spindle_given = true;
+    }
     else if (a == "--thermal-fault" || a == "--thermal-fan") {
       const std::string v = value();
       std::string what;
@@ -154,6 +190,13 @@ int main(int argc, char** argv) {
       for (const auto& f : fans) plant->fan_at(f.first, f.second);
     } else if (!faults.empty() || !fans.empty()) {
       throw std::runtime_error("--thermal-fault/--thermal-fan: this board has no heater");
+    }
+    std::unique_ptr<sim::SpindleEncoder> spindle_model;
+    if (machine.board().spindle_pins[0] != am::kNoPin) {
+      if (spindle.profile.empty()) spindle.profile.push_back({0, 0});
+      spindle_model.reset(new sim::SpindleEncoder(machine, spindle));
+    } else if (spindle_given) {
+      throw std::runtime_error("--spindle-*: this board has no spindle encoder");
     }
     if (pty) {
       sim::PtyPort port(link);

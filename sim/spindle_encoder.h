@@ -75,6 +75,7 @@ class SpindleEncoder {
   // The cycle of the next transition (0: none), with its jitter.
   uint64_t schedule();
   void set_pins(uint64_t cycle, bool logged, bool count);
+  void drive(uint8_t pin, bool level);
   double omega(double t_s) const;  // phases per second
 
   Machine& m_;
@@ -88,6 +89,7 @@ class SpindleEncoder {
   int next_direction_ = 0;  // ... and direction
   uint64_t last_cycle_ = 0;
   int64_t counts_ = 0;
+  uint8_t external_mask_[4] = {}, external_value_[4] = {};  // per port A..D
   std::vector<SpindleTransition> log_;
   std::mt19937 rng_;
 };
