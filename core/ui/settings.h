@@ -59,10 +59,10 @@ inline const FieldSpec& field_row(uint8_t i) {
   static const char kLines[] AM_FLASH = "Encoder lines";
   static const char kQuad[] AM_FLASH = "Quadrature 0/1";
   static const char kLeadMm[] AM_FLASH = "Lead mm";
-  static const char kLeadTpi[] AM_FLASH = "Lead TPI (0=mm)";
-  static const char kSteps[] AM_FLASH = "Motor steps/rev";
+  static const char kLeadTpi[] AM_FLASH = "Lead TPI 0=mm";
+  static const char kSteps[] AM_FLASH = "Steps/rev";
   static const char kMicro[] AM_FLASH = "Microsteps";
-  static const char kReversed[] AM_FLASH = "Reverse dir 0/1";
+  static const char kReversed[] AM_FLASH = "Reverse 0/1";
   static const char kRapid[] AM_FLASH = "Rapid steps/s";
   static const FieldSpec kFields[kFieldCount] AM_FLASH = {
       {kLines, 1, kMaxLines, 0}, {kQuad, 0, 1, 0},    {kLeadMm, 100, 50000, 3}, {kLeadTpi, 0, 1000, 1},

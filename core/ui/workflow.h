@@ -8,7 +8,7 @@
 //   carriage at once while it moves (emergency stop); C deletes the last
 //   character typed, on an empty field or elsewhere it goes back (while the
 //   carriage moves it stops it too); A switches a pitch between mm and TPI,
-//   or steps forward through the settings (B back); B on a pitch or feed
+//   or steps through the settings (after the last, the first); B on a pitch or feed
 //   entry types the table's next value (tables.h) in place of the text, to
 //   be taken with D or edited; '*' first in a move's distance makes it
 //   negative.
@@ -34,10 +34,12 @@
 //              bar; then ready for the next pass, which the leadscrew
 //              re-enters on the same helix (it waits for the index again)
 //   move       a signed distance in mm, then the move with a progress bar
-//   settings   one field per screen (core/ui/settings.h), A/B to step, D to
-//              edit; C leaves and writes the block to the EEPROM if changed
-//   message    a refusal or notice on row 0, the valid range on row 1 for a
-//              number out of range; any key or 1.5 s goes back
+//   settings   one field per screen (core/ui/settings.h), A to step, D to
+//              edit; C leaves and stores the block (save(): the EEPROM's
+//              update writes only the bytes that changed)
+//   message    a refusal or notice on row 0 ("Cut refused", "Ratio not
+//              exact", ...), the valid range on row 1 for a number out of
+//              range; any key or 1.5 s goes back
 //
 // Lathe interface (L: static functions; a simulated one in
 // tests/host/ui_fake_lathe.h): engage(ratio, reversed, length_steps) ->
@@ -120,7 +122,7 @@ class Workflow {
     settings_ = s;
     screen_.clear_sent();
     go(State::menu);
-    if (!loaded) message(AM_TEXT("Settings reset"), AM_TEXT("to defaults"), State::menu);
+    if (!loaded) message(AM_TEXT("Defaults loaded"), State::menu);
     draw();
   }
 
@@ -145,9 +147,8 @@ class Workflow {
     entered_ms_ = L::ms();
   }
 
-  AM_UI_OUTLINE void message(const char* top, const char* bottom, State back) {
-    msg_top_ = top;
-    msg_bottom_ = bottom;
+  AM_UI_OUTLINE void message(const char* text, State back) {
+    msg_ = text;
     msg_range_ = false;
     back_ = back;
     go(State::message);
@@ -192,7 +193,6 @@ class Workflow {
         if (k == '3') begin_entry(Entry::move);
         if (k == 'A') {
           field_ = 0;
-          changed_ = false;
           go(State::settings);
         }
         break;
@@ -223,7 +223,7 @@ class Workflow {
         if (k == 'D') {
           pass_start_ = L::position();
           if (L::engage(ratio_, reversed_, length_steps_)) go(State::cutting);
-          else message(AM_TEXT("Cut refused"), AM_TEXT("too fast?"), State::ready);
+          else message(AM_TEXT("Cut refused"), State::ready);
         }
         if (k == 'C') go(State::menu);
         break;
@@ -237,16 +237,11 @@ class Workflow {
         break;
       case State::settings:
         if (k == 'A') field_ = uint8_t(field_ + 1 == kFieldCount ? 0 : field_ + 1);
-        if (k == 'B') field_ = uint8_t((field_ == 0 ? uint8_t(kFieldCount) : field_) - 1);
         if (k == 'D') begin_entry(Entry::setting);
         if (k == 'C') {
-          if (!changed_) {
-            go(State::menu);
-          } else {
-            seal(settings_);
-            L::save(settings_);
-            message(AM_TEXT("Settings saved"), AM_TEXT(""), State::menu);
-          }
+          seal(settings_);
+          L::save(settings_);  // the EEPROM's cells are written only where they differ
+          message(AM_TEXT("Settings saved"), State::menu);
         }
         break;
       case State::message:
@@ -266,7 +261,7 @@ class Workflow {
     target_ = target;
     retracting_ = retract;
     if (L::move_to(target, settings_.value[kFieldRapid])) go(State::moving);
-    else message(AM_TEXT("Move refused"), AM_TEXT(""), retract ? State::done : State::menu);
+    else message(AM_TEXT("Move refused"), retract ? State::done : State::menu);
   }
 
   // --- number entry -----------------------------------------------------
@@ -308,7 +303,7 @@ class Workflow {
   }
 
   AM_UI_OUTLINE bool refuse(const char* why, bool range) {
-    message(why, AM_TEXT(""), State::entry);
+    message(why, State::entry);
     msg_range_ = range;
     return false;
   }
@@ -319,7 +314,6 @@ class Workflow {
     if (entry_ == Entry::pitch_tpi) choose({254000, uint32_t(v)});
     if (entry_ == Entry::move) move(L::position() + um_to_steps(m, v * 10), false);
     if (entry_ == Entry::setting) {
-      changed_ = changed_ || settings_.value[field_] != uint32_t(v);
       settings_.value[field_] = uint32_t(v);
       go(State::settings);
     }
@@ -327,7 +321,7 @@ class Workflow {
       length_steps_ = um_to_steps(m, v * 10);
       const GearRatio g = gear_ratio_exact(m, {pitch_, 1, left_ ? Hand::left : Hand::right});
       if (g.status != RatioStatus::exact) {
-        message(AM_TEXT("Ratio not exact"), AM_TEXT("pitch or setup?"), State::menu);
+        message(AM_TEXT("Ratio not exact"), State::menu);
         return;
       }
       ratio_ = g.ratio;
@@ -349,15 +343,12 @@ class Workflow {
   }
 
   // The distance covered of the current move as a bar on row 1: floor(80
-  // covered / total) columns, both halved until the total fits 15 bits (a
-  // move of more than 32767 steps may show one column less).
+  // covered / total) columns lit.
   AM_UI_OUTLINE void progress() {
-    uint32_t total = uint32_t(target_ - origin_), done = uint32_t(L::position() - origin_);
-    if (int32_t(total) < 0) total = 0u - total, done = 0u - done;
-    if (int32_t(done) < 0) done = 0;
-    while (total > 0x7FFF) total >>= 1, done >>= 1;
-    const uint16_t t = uint16_t(total), d = uint16_t(done < t ? done : t);
-    screen_.bar(1, t ? uint8_t(d * uint32_t(kBarSteps) / t) : kBarSteps);
+    int32_t total = target_ - origin_, covered = L::position() - origin_;
+    if (total < 0) total = -total, covered = -covered;
+    const int32_t lit = total ? scale(covered, kBarSteps, uint32_t(total)) : kBarSteps;
+    screen_.bar(1, lit < 0 ? 0 : lit > kBarSteps ? kBarSteps : uint8_t(lit));
   }
 
   AM_UI_OUTLINE void draw() {
@@ -374,7 +365,7 @@ class Workflow {
         break;
       }
       case State::hand:
-        s.line(0, AM_TEXT("Hand (feed dir)"));
+        s.line(0, AM_TEXT("Hand"));
         s.line(1, AM_TEXT("1Right 2Left"));
         break;
       case State::ready:
@@ -411,13 +402,13 @@ class Workflow {
         break;
       }
       case State::message:
-        s.line(0, msg_top_);
+        s.line(0, msg_);
         if (msg_range_) {
           const FieldSpec sp = spec();
           s.blank(1, s.number(1, s.text(1, s.number(1, 0, sp.min, 0, sp.decimals), AM_TEXT("..")), sp.max, 0,
                               sp.decimals));
         } else {
-          s.line(1, msg_bottom_);
+          s.blank(1, 0);
         }
         break;
     }
@@ -430,7 +421,6 @@ class Workflow {
   Entry entry_;
   uint8_t row_;  // the table row typed last, 0xFF for none
   uint8_t field_;
-  bool changed_;
   bool left_;
   bool retracting_;
   bool msg_range_;
@@ -439,8 +429,7 @@ class Workflow {
   uint16_t pass_;
   uint16_t entered_ms_;
   uint16_t drawn_ms_;
-  const char* msg_top_;
-  const char* msg_bottom_;
+  const char* msg_;
   Pitch pitch_;
   Ratio ratio_;
   bool reversed_;

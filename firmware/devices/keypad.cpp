@@ -27,20 +27,16 @@ uint8_t accepted_ = kNone;   // the debounced state
 
 // Key index r * 4 + c of the first key down, or kNone.
 uint8_t scan() {
-  uint8_t found = kNone;
-  for (uint8_t c = 0; c < 4; ++c) {
-    const uint8_t column = uint8_t(0x80 >> c);
+  uint8_t found = kNone, c = 0;
+  for (uint8_t column = 0x80; column & kColumns; column = uint8_t(column >> 1), ++c) {
     Port::write(column, 0);  // pull-up off first, then drive low: never high
     Port::output(column);
     __builtin_avr_delay_cycles(F_CPU / 1000000UL);  // ~1 us for the row to settle
-    const uint8_t down = uint8_t(~Port::read() & kRows);
+    const uint8_t down = uint8_t(~Port::read());
     Port::input(column);     // float first, then pull up
     Port::write(column, column);
-    if (found == kNone && down) {
-      uint8_t r = 0;
-      while (!(down & (0x08 >> r))) ++r;
-      found = uint8_t(r * 4 + c);
-    }
+    for (uint8_t r = 0; r < 4; ++r)
+      if (found == kNone && (down & (0x08 >> r))) found = uint8_t(r * 4 + c);
   }
   return found;
 }

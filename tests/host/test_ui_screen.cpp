@@ -91,17 +91,11 @@ TEST(UiTables, RowsAreCoreLathesEntries) {
   using namespace am;
   using namespace am::ui;
   ASSERT_EQ(list_size(kMetricList), kIsoCoarseCount);
-  for (uint8_t i = 0; i < list_size(kMetricList); ++i) {
-    const Pitch p = list_pitch(kMetricList, i);
-    EXPECT_EQ(p.num, kIsoCoarse[i].pitch_um);
-    EXPECT_EQ(p.den, 1u);
-  }
+  for (uint8_t i = 0; i < list_size(kMetricList); ++i) EXPECT_EQ(table_value(kMetricList, i), kIsoCoarse[i].pitch_um);
   ASSERT_EQ(list_size(kInchList), kCommonTpiCount);
-  for (uint8_t i = 0; i < list_size(kInchList); ++i) {
-    const Pitch p = list_pitch(kInchList, i);
-    EXPECT_EQ(p.num, 50800u);
-    EXPECT_EQ(p.den, kCommonTpi[i]);
-  }
+  for (uint8_t i = 0; i < list_size(kInchList); ++i) EXPECT_EQ(table_value(kInchList, i), kCommonTpi[i] * 5);
+  ASSERT_EQ(list_size(kFeedList), kTurningFeedsCount);
+  for (uint8_t i = 0; i < list_size(kFeedList); ++i) EXPECT_EQ(table_value(kFeedList, i), kTurningFeeds[i]);
   // The common TPI hold every UNC and UNF pitch (so those tables are left out).
   for (const InchThread* t : {kUnc, kUnf}) {
     const size_t n = t == kUnc ? kUncCount : kUnfCount;
@@ -117,15 +111,6 @@ TEST(UiTables, RowsAreCoreLathesEntries) {
     for (const MetricThread& c : kIsoCoarse) found = found || c.pitch_um == f.pitch_um;
     EXPECT_TRUE(found) << f.pitch_um;
   }
-  for (uint8_t i = 0; i < list_size(kFeedList); ++i) EXPECT_EQ(list_pitch(kFeedList, i).num, kTurningFeeds[i]);
-  Screen s;
-  s.clear_sent();
-  draw_row(s, kMetricList, 6);  // M2.5 x 0.45
-  EXPECT_EQ(row_text(s, 0), "ISO M2.5        ");
-  EXPECT_EQ(row_text(s, 1), "0.450mm         ");
-  draw_row(s, kInchList, 9);  // 11.5 TPI
-  EXPECT_EQ(row_text(s, 0), "Inch            ");
-  EXPECT_EQ(row_text(s, 1), "11.5tpi         ");
 }
 
 // The seed's machine: a 40-slot disc, a 3.175 mm leadscrew, 200 full steps.

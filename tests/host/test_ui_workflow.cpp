@@ -49,17 +49,15 @@ std::pair<uint64_t, uint64_t> reduced(unsigned __int128 p, unsigned __int128 q) 
 TEST_F(UiTest, ThreadingSessionScreenByScreen) {
   FakeLathe::rpm_now = 250;
   wait_ms(ui, 100);  // the live line refreshes every 100 ms
-  EXPECT_EQ(r0(), "1Cut 2Move 3Set ");
+  EXPECT_EQ(r0(), "1Thr 2Feed 3Move");
   EXPECT_EQ(r1(), " 250rpm Z   0.00");
   press(ui, "1");
-  EXPECT_EQ(r0(), "1Feed 2Fine 3Thr");
-  press(ui, "3");
   EXPECT_EQ(r0(), "Pitch mm A:TPI  ");
   EXPECT_EQ(r1(), "_               ");
   press(ui, "1#0");
   EXPECT_EQ(r1(), "1.0_            ");
   press(ui, "D");
-  EXPECT_EQ(r0(), "Hand (feed dir) ");
+  EXPECT_EQ(r0(), "Hand            ");
   EXPECT_EQ(r1(), "1Right 2Left    ");
   press(ui, "1");
   EXPECT_EQ(r0(), "Length mm 0=run ");
@@ -90,7 +88,7 @@ TEST_F(UiTest, ThreadingSessionScreenByScreen) {
   press(ui, "D");
   ASSERT_EQ(FakeLathe::moves.size(), 1u);
   EXPECT_EQ(FakeLathe::moves[0].first, 0);
-  EXPECT_EQ(FakeLathe::moves[0].second, 4000u);  // the rapid rate's default
+  EXPECT_EQ(FakeLathe::moves[0].second, 4000u);  // the rapid rate
   EXPECT_EQ(r0(), "Retract Z  19.98");            // 1259 x 3175 / 200 = 19986.6 um
   EXPECT_EQ(r1(), "                ");
   FakeLathe::run(1259 / 2);
@@ -108,7 +106,7 @@ TEST_F(UiTest, ThreadingSessionScreenByScreen) {
 }
 
 TEST_F(UiTest, LeftHandThirteenTpiFromTheKeys) {
-  press(ui, "13A");
+  press(ui, "1A");
   EXPECT_EQ(r0(), "Pitch TPI A:mm  ");
   press(ui, "13D2");
   press(ui, "0D");  // length 0: until stopped
@@ -130,16 +128,18 @@ TEST_F(UiTest, LeftHandThirteenTpiFromTheKeys) {
   EXPECT_EQ(FakeLathe::pos, -5000);
 }
 
-TEST_F(UiTest, TablePickGivesTheRowsPitch) {
-  press(ui, "13B");
-  EXPECT_EQ(r0(), "ISO M1          ");
-  EXPECT_EQ(r1(), "0.250mm         ");
+// B types the table's next distinct value into the entry; D takes it.
+TEST_F(UiTest, TablePickTypesTheRowsPitch) {
+  press(ui, "1B");
+  EXPECT_EQ(r1(), "0.250_          ");  // M1
   press(ui, "B");
-  EXPECT_EQ(r0(), "ISO M64         ");
-  EXPECT_EQ(r1(), "6.000mm         ");
-  press(ui, "AAAAAAAAAAAAAAA");
-  EXPECT_EQ(r0(), "ISO M10         ");
-  EXPECT_EQ(r1(), "1.500mm         ");
+  EXPECT_EQ(r1(), "0.300_          ");  // M1.4 (M1.2 repeats 0.25)
+  for (int k = 0; k < 8; ++k) press(ui, "B");  // 0.35 0.4 0.45 0.5 0.6 0.7 0.8 1
+  EXPECT_EQ(r1(), "1.000_          ");
+  press(ui, "B");
+  EXPECT_EQ(r1(), "1.250_          ");  // M8
+  press(ui, "B");
+  EXPECT_EQ(r1(), "1.500_          ");  // M10
   press(ui, "D1");
   press(ui, "0D");
   press(ui, "D");
@@ -149,13 +149,10 @@ TEST_F(UiTest, TablePickGivesTheRowsPitch) {
 }
 
 TEST_F(UiTest, InchAndFeedTables) {
-  press(ui, "13AB");
-  EXPECT_EQ(r0(), "Inch            ");
-  EXPECT_EQ(r1(), "4.0tpi          ");
-  press(ui, "B");
-  EXPECT_EQ(r1(), "80.0tpi         ");
-  press(ui, "AAAAAAAAAAAA");  // 4 4.5 5 6 7 8 9 10 11 11.5 12 13
-  EXPECT_EQ(r1(), "13.0tpi         ");
+  press(ui, "1AB");
+  EXPECT_EQ(r1(), "4.0_            ");
+  for (int k = 0; k < 11; ++k) press(ui, "B");  // 4.5 5 6 7 8 9 10 11 11.5 12 13
+  EXPECT_EQ(r1(), "13.0_           ");
   press(ui, "D2");
   press(ui, "0D");
   press(ui, "D");
@@ -164,13 +161,14 @@ TEST_F(UiTest, InchAndFeedTables) {
   EXPECT_EQ(FakeLathe::engages[0].ratio.den, 13u);
   press(ui, "C");
   wait_ms(ui, 10);
-  press(ui, "C1");
-  EXPECT_EQ(r0(), "1Feed 2Fine 3Thr");
-  press(ui, "1B");
-  EXPECT_EQ(r0(), "Feed            ");
-  EXPECT_EQ(r1(), "0.020mm/rev     ");
-  press(ui, "AAD");
-  EXPECT_EQ(r0(), "Hand (feed dir) ");
+  press(ui, "C");
+  EXPECT_EQ(r0(), "1Thr 2Feed 3Move");
+  press(ui, "2");
+  EXPECT_EQ(r0(), "Feed mm/rev B:tb");
+  press(ui, "BBB");  // 0.02 0.03 0.04: the seed's fine feed
+  EXPECT_EQ(r1(), "0.040_          ");
+  press(ui, "D");
+  EXPECT_EQ(r0(), "Hand            ");
   press(ui, "110D");
   press(ui, "D");
   // 40 um x 200 / (3175 x 40) = 8000 / 127000 = 8/127
@@ -180,18 +178,8 @@ TEST_F(UiTest, InchAndFeedTables) {
   EXPECT_EQ(FakeLathe::engages[1].length, 629);  // floor(10000 x 200 / 3175)
 }
 
-TEST_F(UiTest, FineFeedIsTheSeeds) {
-  press(ui, "122");
-  press(ui, "5D");
-  press(ui, "D");
-  ASSERT_EQ(FakeLathe::engages.size(), 1u);
-  EXPECT_EQ(FakeLathe::engages[0].ratio.num, 8u);  // 0.04 mm, as above
-  EXPECT_EQ(FakeLathe::engages[0].ratio.den, 127u);
-  EXPECT_TRUE(FakeLathe::engages[0].reversed);
-}
-
 TEST_F(UiTest, EntryErrorsSayWhatIsWrongAndGoBack) {
-  press(ui, "13");
+  press(ui, "1");
   press(ui, "D");
   EXPECT_EQ(r0(), "Type a number   ");
   wait_ms(ui, 1490);
@@ -214,21 +202,21 @@ TEST_F(UiTest, EntryErrorsSayWhatIsWrongAndGoBack) {
   press(ui, "12C");  // C deletes the last digit
   EXPECT_EQ(r1(), "1_              ");
   press(ui, "CC");   // then goes back
-  EXPECT_EQ(r0(), "1Feed 2Fine 3Thr");
+  EXPECT_EQ(r0(), "1Thr 2Feed 3Move");
   EXPECT_TRUE(FakeLathe::engages.empty());
 }
 
 TEST_F(UiTest, RefusedCutAndMoveLeaveTheCarriageStill) {
   FakeLathe::refuse = true;
-  press(ui, "13");
+  press(ui, "1");
   press(ui, "1D1");
   press(ui, "5D");
   press(ui, "D");
   EXPECT_EQ(r0(), "Cut refused     ");
-  EXPECT_EQ(r1(), "too fast?       ");
+  EXPECT_EQ(r1(), "                ");
   wait_ms(ui, 1600);
   EXPECT_EQ(r0(), "OK to cut pass 1");
-  press(ui, "C2");
+  press(ui, "C3");
   press(ui, "5D");
   EXPECT_EQ(r0(), "Move refused    ");
   EXPECT_EQ(FakeLathe::pos, 0);
@@ -236,7 +224,7 @@ TEST_F(UiTest, RefusedCutAndMoveLeaveTheCarriageStill) {
 }
 
 TEST_F(UiTest, MoveWithSignAndProgressBar) {
-  press(ui, "2");
+  press(ui, "3");
   EXPECT_EQ(r0(), "Move mm *:minus ");
   press(ui, "*1#5*");  // '*' counts first only
   EXPECT_EQ(r1(), "-1.5_           ");
@@ -257,7 +245,7 @@ TEST_F(UiTest, MoveWithSignAndProgressBar) {
 }
 
 TEST_F(UiTest, SettingsEditedValidatedAndSaved) {
-  press(ui, "3");
+  press(ui, "A");
   EXPECT_EQ(r0(), "Encoder lines   ");
   EXPECT_EQ(r1(), "40           1/8");
   press(ui, "D150D");
@@ -277,6 +265,8 @@ TEST_F(UiTest, SettingsEditedValidatedAndSaved) {
   press(ui, "C8D");
   EXPECT_EQ(r1(), "8            6/8");
   EXPECT_TRUE(FakeLathe::saved.empty());
+  press(ui, "AAA");  // round to the first again
+  EXPECT_EQ(r0(), "Encoder lines   ");
   press(ui, "C");
   EXPECT_EQ(r0(), "Settings saved  ");
   ASSERT_EQ(FakeLathe::saved.size(), 1u);
@@ -287,40 +277,32 @@ TEST_F(UiTest, SettingsEditedValidatedAndSaved) {
   EXPECT_TRUE(am::ui::load_settings(s, seed_machine()));  // sealed: valid as written
   // The next cut uses them: 1.00 mm x 1600 / (3175 x 600) = 1600000 / 1905000 = 320/381.
   wait_ms(ui, 1600);
-  press(ui, "13");
+  press(ui, "1");
   press(ui, "1D1");
   press(ui, "0D");
   press(ui, "D");
   ASSERT_EQ(FakeLathe::engages.size(), 1u);
   EXPECT_EQ(FakeLathe::engages[0].ratio.num, 320u);
   EXPECT_EQ(FakeLathe::engages[0].ratio.den, 381u);
-  // Unchanged settings are not written again.
-  press(ui, "C");
-  wait_ms(ui, 10);
-  press(ui, "C3C");
-  EXPECT_EQ(r0(), "1Cut 2Move 3Set ");
-  EXPECT_EQ(FakeLathe::saved.size(), 1u);
 }
 
 // Where the reduced ratio does not fit the follower's 32 bits, the panel
 // refuses it: it never cuts an approximated thread.
 TEST_F(UiTest, RatioThatCannotRunExactlyIsRefused) {
   am::ui::Settings s = default_settings();
-  s.value[am::ui::kFieldEncoderLines] = 16381;  // prime: nothing cancels
+  s.value[am::ui::kFieldEncoderLines] = 16381;
   s.value[am::ui::kFieldLeadUm] = 49999;
   am::ui::seal(s);
   ui.start(s, true);
-  press(ui, "13A");
+  press(ui, "1A");
   press(ui, "199#9D1");
   press(ui, "0D");
-  // (254000 / 1999) / 49999 x 200 / 16381: the denominator 1999 x 49999 x
-  // 16381 / gcd is above 2^31.
+  // (254000 / 1999) / 49999 x 200 / 16381: the reduced denominator is above 2^31.
   const am::GearRatio g = am::gear_ratio(am::ui::machine(s), {am::Pitch{254000, 1999}, 1, am::Hand::right});
   ASSERT_EQ(g.status, am::RatioStatus::approximated);
   EXPECT_EQ(r0(), "Ratio not exact ");
-  EXPECT_EQ(r1(), "pitch or setup? ");
   press(ui, "D");
-  EXPECT_EQ(r0(), "1Feed 2Fine 3Thr");
+  EXPECT_EQ(r0(), "1Thr 2Feed 3Move");
   EXPECT_TRUE(FakeLathe::engages.empty());
 }
 
@@ -331,10 +313,9 @@ TEST_F(UiTest, InvalidSettingsAtStartSayDefaults) {
   EXPECT_FALSE(ok);
   ui.start(s, ok);
   ui.poll(0);
-  EXPECT_EQ(r0(), "Settings reset  ");
-  EXPECT_EQ(r1(), "to defaults     ");
+  EXPECT_EQ(r0(), "Defaults loaded ");
   wait_ms(ui, 1600);
-  EXPECT_EQ(r0(), "1Cut 2Move 3Set ");
+  EXPECT_EQ(r0(), "1Thr 2Feed 3Move");
   EXPECT_EQ(ui.settings().value[am::ui::kFieldEncoderLines], 40u);
 }
 
@@ -358,7 +339,7 @@ TEST_F(UiTest, TypedPitchesAndLengthsSweep) {
     const uint32_t pitch = 10 + rng() % 49991;      // um
     const uint32_t length = rng() % 200001;         // 0.01 mm
     char keys[64];
-    std::snprintf(keys, sizeof keys, "13%u#%03uD1%u#%02uD", pitch / 1000, pitch % 1000, length / 100, length % 100);
+    std::snprintf(keys, sizeof keys, "1%u#%03uD1%u#%02uD", pitch / 1000, pitch % 1000, length / 100, length % 100);
     press(ui, keys);
     ASSERT_EQ(ui.state(), State::ready) << keys;
     press(ui, "D");

@@ -91,10 +91,10 @@ TEST(LatheOperator, StartsWithTheMenuAndTheBarGlyphs) {
   EXPECT_TRUE(p.lcd->four_bit());
   EXPECT_TRUE(p.lcd->display_on());
   // Erased EEPROM: the defaults, with a message, then the menu.
-  EXPECT_EQ(p.row0(), "Settings reset  ");
-  EXPECT_EQ(p.row1(), "to defaults     ");
+  EXPECT_EQ(p.row0(), "Defaults loaded ");
+  EXPECT_EQ(p.row1(), "                ");
   p.run_to(2.0);
-  EXPECT_EQ(p.row0(), "1Cut 2Move 3Set ");
+  EXPECT_EQ(p.row0(), "1Thr 2Feed 3Move");
   EXPECT_EQ(p.row1(), "   0rpm Z   0.00");
   for (int k = 1; k <= 5; ++k) {
     const uint8_t bits = uint8_t(0x1F & ~(0x1F >> k));  // k columns lit from the left
@@ -119,19 +119,17 @@ uint64_t press_ok_after_index(Panel& p) {
 // 300 rpm, from the keys alone.
 TEST(LatheOperator, WholeThreadingSessionFromTheKeys) {
   Panel p({}, 300);
-  p.run_to(1.8);  // past "Settings reset"
-  EXPECT_EQ(p.row0(), "1Cut 2Move 3Set ");
+  p.run_to(1.8);  // past "Defaults loaded"
+  EXPECT_EQ(p.row0(), "1Thr 2Feed 3Move");
   EXPECT_TRUE(p.live_rpm_near(300)) << p.row1();
   EXPECT_EQ(p.row1().substr(9), "   0.00");
   p.type("1");
-  EXPECT_EQ(p.row0(), "1Feed 2Fine 3Thr");
-  p.type("3");
   EXPECT_EQ(p.row0(), "Pitch mm A:TPI  ");
   EXPECT_EQ(p.row1(), "_               ");
   p.type("1#0");
   EXPECT_EQ(p.row1(), "1.0_            ");  // every bouncing key counted once
   p.type("D");
-  EXPECT_EQ(p.row0(), "Hand (feed dir) ");
+  EXPECT_EQ(p.row0(), "Hand            ");
   EXPECT_EQ(p.row1(), "1Right 2Left    ");
   p.type("1");
   EXPECT_EQ(p.row0(), "Length mm 0=run ");
@@ -182,7 +180,7 @@ TEST(LatheOperator, WholeThreadingSessionFromTheKeys) {
     EXPECT_EQ(p.m->axis('Z')->position, 0) << pass;
   }
   p.type("C");
-  EXPECT_EQ(p.row0(), "1Cut 2Move 3Set ");
+  EXPECT_EQ(p.row0(), "1Thr 2Feed 3Move");
   EXPECT_EQ(p.m->axis('Z')->decode_errors, 0u);
   EXPECT_EQ(p.lcd->busy_writes(), 0u);
 }
@@ -191,7 +189,7 @@ TEST(LatheOperator, WholeThreadingSessionFromTheKeys) {
 TEST(LatheOperator, MoveShowsItsProgressBar) {
   Panel p;
   p.run_to(1.8);
-  p.type("2");
+  p.type("3");
   EXPECT_EQ(p.row0(), "Move mm *:minus ");
   p.type("*10D");  // -10 mm: floor(10000 x 800 / 3175) = 2519 steps at 4000 steps/s
   std::vector<std::string> bars;
@@ -202,7 +200,7 @@ TEST(LatheOperator, MoveShowsItsProgressBar) {
         return p.row1() == "   0rpm Z  -9.99";  // -2519 x 3175 / 800 = -9997.3 um
       },
       uint64_t(3 * p.m->f_cpu()));
-  EXPECT_EQ(p.row0(), "1Cut 2Move 3Set ");
+  EXPECT_EQ(p.row0(), "1Thr 2Feed 3Move");
   EXPECT_EQ(p.m->axis('Z')->position, -2519);
   // The bar only grows, glyph by glyph (5 columns each), and got to full.
   size_t lit_before = 0, full = 0;
@@ -223,7 +221,7 @@ TEST(LatheOperator, SettingsGoThroughTheEepromAndBack) {
   {
     Panel p;
     p.run_to(1.8);
-    p.type("3");
+    p.type("A");
     EXPECT_EQ(p.row0(), "Encoder lines   ");
     EXPECT_EQ(p.row1(), "40           1/8");
     p.type("D600D");
@@ -232,10 +230,10 @@ TEST(LatheOperator, SettingsGoThroughTheEepromAndBack) {
     EXPECT_EQ(p.row0(), "Quadrature 0/1  ");
     EXPECT_EQ(p.row1(), "1            2/8");
     p.type("AA");
-    EXPECT_EQ(p.row0(), "Lead TPI (0=mm) ");
+    EXPECT_EQ(p.row0(), "Lead TPI 0=mm   ");
     EXPECT_EQ(p.row1(), "8.0          4/8");  // the board's 8 TPI leadscrew
     p.type("A");
-    EXPECT_EQ(p.row0(), "Motor steps/rev ");
+    EXPECT_EQ(p.row0(), "Steps/rev       ");
     EXPECT_EQ(p.row1(), "800          5/8");  // the board's 200 x 4
     p.type("D0D");
     EXPECT_EQ(p.row0(), "Out of range    ");
@@ -257,8 +255,8 @@ TEST(LatheOperator, SettingsGoThroughTheEepromAndBack) {
   {  // A power cycle with that EEPROM: no message, the stored values.
     Panel p(stored);
     p.run_to(0.3);
-    EXPECT_EQ(p.row0(), "1Cut 2Move 3Set ");
-    p.type("3");
+    EXPECT_EQ(p.row0(), "1Thr 2Feed 3Move");
+    p.type("A");
     EXPECT_EQ(p.row1(), "600          1/8");
     p.type("AAAA");
     EXPECT_EQ(p.row1(), "3200         5/8");
@@ -268,10 +266,9 @@ TEST(LatheOperator, SettingsGoThroughTheEepromAndBack) {
     torn[at] ^= 0x04;
     Panel p(torn);
     p.run_to(0.3);
-    EXPECT_EQ(p.row0(), "Settings reset  ") << at;
-    EXPECT_EQ(p.row1(), "to defaults     ") << at;
+    EXPECT_EQ(p.row0(), "Defaults loaded ") << at;
     p.run_to(1.8);
-    p.type("3");
+    p.type("A");
     EXPECT_EQ(p.row1(), "40           1/8") << at;  // the board's machine
   }
 }
