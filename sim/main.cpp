@@ -2,6 +2,8 @@
 // over its UART, or offers the UART as a pseudo-terminal to a program
 // (--pty, pty_run.h), and reports what the motors did
 // (docs/simulator-report.md, docs/simulator.md).
+#include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
@@ -10,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "keypad_model.h"
+#include "lcd_model.h"
 #include "machine.h"
 #include "plot.h"
 #include "progress.h"
@@ -29,6 +33,7 @@ void usage() {
                "                     [--report FILE] [--plot FILE.svg] [--vcd ...] [--max-seconds S] [--progress]\n"
                "                     [--thermal-initial C] [--thermal-fault NAME@S] [--thermal-fan F@S]\n"
                "                     [--spindle-lines N] [--spindle-quadrature] [--spindle-rpm RPM@S]... [--spindle-jitter US]\n"
+               "                     [--lcd FILE|-] [--keys KEYS@S]...\n"
                "  --board NAME        run " AVRMOTION_FIRMWARE_DIR "/avrmotion-NAME.elf (uno, m32, m16, m16-lathe, ...)\n"
                "  --input FILE        command lines to send (default: standard input); '#' starts a comment\n"
                "  --report FILE       JSON report (default: standard output)\n"
@@ -56,6 +61,12 @@ void usage() {
                "  --spindle-rpm RPM@S rpm at S seconds, linear between points, negative turns backward;\n"
                "                      more than once (default 0@0: at rest)\n"
                "  --spindle-jitter US each encoder edge up to +-US microseconds off its time\n"
+               "  the operator panel (m16-panel: HD44780 on PORTA, 4x4 keypad on PORTB, docs/lathe.md):\n"
+               "  --lcd FILE|-        the 2x16 display; every screen it showed, with its time, to FILE\n"
+               "                      (-: standard error)\n"
+               "  --keys KEYS@S       press KEYS (of 0-9 A-D * #) from S seconds on, one every 0.25 s, each\n"
+               "                      held 0.125 s and bouncing 4 ms; more than once allowed; the run lasts\n"
+               "                      until 1 s after the last key at least\n"
                "exit: 0 ran to the end (--pty: the client closed, or SIGINT/SIGTERM), 2 bad usage or image, 3 budget spent, 4 CPU stopped,\n"
                "      5 simavr reported an error (a dropped event: the run is not valid)\n";
 }
@@ -88,6 +99,8 @@ int main(int argc, char** argv) {
   sim::ThermalParams thermal;
   std::vector<std::pair<double, sim::ThermalFault>> faults;
   std::vector<std::pair<double, double>> fans;
+  std::string lcd_file;
+  std::vector<std::pair<std::string, double>> key_script;
   sim::SpindleParams spindle;
   spindle.profile.clear();
   bool spindle_given = false;
@@ -114,7 +127,16 @@ int main(int argc, char** argv) {
     else if (a == "--speed") speed_text = value();
     else if (a == "--linger") linger = std::atof(value().c_str()), linger_given = true;
     else if (a == "--thermal-initial") thermal.initial_c = std::atof(value().c_str());
-    else if (a == "--spindle-lines") {
+    else if (a == "--lcd") lcd_file = value();
+    else if (a == "--keys") {
+      std::string keys;
+      double at = 0;
+      if (!split_at(value(), keys, at)) {
+        std::cerr << "avrmotion-sim: --keys needs KEYS@SECONDS\n";
+        return 2;
+      }
+      key_script.push_back({keys, at});
+    } else if (a == "--spindle-lines") {
       const int n = std::atoi(value().c_str());
       if (n < 1 || n > 16383) {
         usage();
@@ -198,6 +220,40 @@ int main(int argc, char** argv) {
     } else if (spindle_given) {
       throw std::runtime_error("--spindle-*: this board has no spindle encoder");
     }
+    // The panel: the display (its screens logged) and the keypad's script.
+    std::unique_ptr<sim::LcdModel> lcd;
+    std::unique_ptr<sim::KeypadModel> keypad;
+    std::ofstream lcd_out;
+    std::ostream* lcd_log = nullptr;
+    std::string pending_screen;
+    uint64_t pending_cycle = 0;
+    const auto log_screen = [&] {
+      char t[32];
+      std::snprintf(t, sizeof t, "%10.4f |", double(pending_cycle) / machine.f_cpu());
+      *lcd_log << t << pending_screen.substr(0, 16) << "|" << pending_screen.substr(17) << "|\n";
+    };
+    double keys_end_s = 0;
+    if (!lcd_file.empty() || !key_script.empty()) {
+      lcd.reset(new sim::LcdModel(machine));
+      keypad.reset(new sim::KeypadModel(machine));
+      for (const auto& k : key_script) keys_end_s = std::max(keys_end_s, keypad->type(k.first, k.second));
+      if (!lcd_file.empty()) {
+        if (lcd_file != "-") lcd_out.open(lcd_file);
+        lcd_log = lcd_file == "-" ? &std::cerr : &lcd_out;
+        // A screen is logged once it has stood for 5 ms: the characters of
+        // one redraw (about 2 ms) come as a single line.
+        lcd->on_change = [&] {
+          const uint64_t now = machine.cycles();
+          if (!pending_screen.empty() && now - pending_cycle >= machine.f_cpu() / 200) log_screen();
+          pending_screen = lcd->text();
+          pending_cycle = now;
+        };
+      }
+    }
+    if (keys_end_s > 0) {
+      const uint64_t until = uint64_t((keys_end_s + 1) * machine.f_cpu());
+      if (until < budget) end = machine.run([] { return false; }, until);
+    }
     if (pty) {
       sim::PtyPort port(link);
       std::cerr << "avrmotion-sim: pty " << port.path() << (link.empty() ? "" : " (link " + link + ")") << std::endl;
@@ -221,6 +277,7 @@ int main(int argc, char** argv) {
       end = sim::run_script_with_progress(machine, budget, progress ? &std::cerr : nullptr);
     }
     if (trace) trace->finish();
+    if (lcd_log && !pending_screen.empty()) log_screen();
     const sim::PtyStats* pty_stats = pty ? &stats : nullptr;
     if (report.empty()) {
       sim::write_report(std::cout, machine, end, pty_stats, plant.get());
