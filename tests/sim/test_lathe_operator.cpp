@@ -183,6 +183,30 @@ TEST(LatheOperator, WholeThreadingSessionFromTheKeys) {
   EXPECT_EQ(p.row0(), "1Thr 2Feed 3Move");
   EXPECT_EQ(p.m->axis('Z')->decode_errors, 0u);
   EXPECT_EQ(p.lcd->busy_writes(), 0u);
+  // The session's deepest stack (the ratio's 128-bit set-up on the length's
+  // D) against the RAM left above .data and .bss.
+  EXPECT_LT(p.m->stack_bytes(), p.m->free_ram());
+  std::printf("m16-panel session: stack %u B of %u B free above .data and .bss\n", p.m->stack_bytes(),
+              p.m->free_ram());
+}
+
+// The panel image within the ATmega16's flash with 10 % to spare (avr-size
+// of the toolchain that built it).
+TEST(LatheOperator, PanelImageLeavesTenPercentOfTheFlash) {
+  const std::string cmd = "avr-size -C --mcu=atmega16 " + simtest::image("m16-panel");
+  FILE* out = popen(cmd.c_str(), "r");
+  ASSERT_NE(out, nullptr);
+  unsigned long flash = 0, ram = 0;
+  char line[256];
+  while (fgets(line, sizeof line, out)) {
+    std::sscanf(line, "Program: %lu", &flash);
+    std::sscanf(line, "Data: %lu", &ram);
+  }
+  pclose(out);
+  ASSERT_GT(flash, 0u);
+  std::printf("m16-panel: %lu B of flash (limit 14745 B, 90 %% of 16384), %lu B of RAM (.data + .bss)\n", flash, ram);
+  EXPECT_LE(flash, 14745u);
+  EXPECT_LE(ram, 1024u);
 }
 
 // The retract's progress bar, read from the display while it moves.
