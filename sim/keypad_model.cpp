@@ -21,6 +21,12 @@ KeypadModel::KeypadModel(Machine& m, const KeypadTiming& t) : m_(m), timing_(t) 
   m.after_reset([this] { arm(); });
 }
 
+KeypadModel::~KeypadModel() {
+  avr_cycle_timer_cancel(m_.avr(), &KeypadModel::on_timer, this);
+  avr_irq_unregister_notify(avr_io_getirq(m_.avr(), AVR_IOCTL_IOPORT_GETIRQ('B'), IOPORT_IRQ_PIN_ALL),
+                            &KeypadModel::on_port, this);
+}
+
 void KeypadModel::transition(uint8_t key, uint64_t at, bool closed) {
   const uint64_t span = uint64_t(timing_.bounce_s * m_.f_cpu());
   std::vector<uint64_t> flips;

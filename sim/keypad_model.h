@@ -18,6 +18,9 @@
 // run; times are seconds of simulated time from reset.
 // type(keys, at_s, every_s) presses each character of `keys` in turn,
 // every_s apart, each held for half of that.
+// The model must not be destroyed before the machine stops running (the
+// machine's reset hook refers to it); its destructor drops its IRQ hook and
+// its pending contact event.
 #pragma once
 #include <cstdint>
 #include <random>
@@ -37,6 +40,7 @@ struct KeypadTiming {
 class KeypadModel {
  public:
   explicit KeypadModel(Machine& m, const KeypadTiming& t = KeypadTiming());
+  ~KeypadModel();
   KeypadModel(const KeypadModel&) = delete;
   KeypadModel& operator=(const KeypadModel&) = delete;
 

@@ -14,7 +14,8 @@
 // one would have dropped them). glyph(k) is the 8 rows of CGRAM glyph k.
 // changes() counts the instructions after which the screen's text differed
 // from before; on_change (if set) is called after each of them, e.g. to log
-// every screen a test goes through.
+// every screen a test goes through. The model must outlive the machine's
+// run: simavr's part keeps calling into it from the pins.
 #pragma once
 #include <array>
 #include <cstdint>

@@ -8,10 +8,10 @@
 //   carriage at once while it moves (emergency stop); C deletes the last
 //   character typed, on an empty field or elsewhere it goes back (while the
 //   carriage moves it stops it too); A switches a pitch between mm and TPI,
-//   or steps through the settings (after the last, the first); B on a pitch or feed
-//   entry types the table's next value (tables.h) in place of the text, to
-//   be taken with D or edited; '*' first in a move's distance makes it
-//   negative.
+//   opens the settings from the menu and steps through them (after the
+//   last, the first); B on a pitch or feed entry types the table's next
+//   distinct value (tables.h) in place of the text, to be taken with D or
+//   edited; '*' first in a move's distance makes it negative.
 //
 // Screens (2 x 16)
 //   menu       "1Thr 2Feed 3Move" + the live line (spindle rpm, carriage Z
@@ -168,6 +168,7 @@ class Workflow {
     const uint16_t was = row_ < list_size(list) ? table_value(list, row_) : 0;
     do row_ = uint8_t(row_ + 1 >= list_size(list) ? 0 : row_ + 1);
     while (table_value(list, row_) == was);
+    // At most 6 characters ("80.0", "6.000", "0.500"): typed_ holds 8.
     typed_len_ = Screen::format(typed_, table_value(list, row_), entry_ == Entry::pitch_tpi ? 1 : 3);
   }
 

@@ -31,7 +31,8 @@ struct Panel {
   std::unique_ptr<sim::SpindleEncoder> spindle;
   const std::vector<sim::PinEdge>* step;
 
-  explicit Panel(const std::vector<uint8_t>& eeprom = {}, double rpm = 0)
+  explicit Panel(const std::vector<uint8_t>& eeprom = {}, double rpm = 0,
+                 const sim::KeypadTiming& keypad = sim::KeypadTiming())
       : m(new sim::Machine(simtest::image("m16-panel"))), step(&m->watch_pin('C', 0)) {
     if (!eeprom.empty()) {
       std::vector<uint8_t> bytes = eeprom;
@@ -39,7 +40,7 @@ struct Panel {
       avr_ioctl(m->avr(), AVR_IOCTL_EEPROM_SET, &d);
     }
     lcd.reset(new sim::LcdModel(*m));
-    keys.reset(new sim::KeypadModel(*m));
+    keys.reset(new sim::KeypadModel(*m, keypad));
     sim::SpindleParams p;  // the seed's 40-slot disc
     p.profile = {{0, rpm}};
     spindle.reset(new sim::SpindleEncoder(*m, p));
@@ -140,7 +141,9 @@ TEST(LatheOperator, WholeThreadingSessionFromTheKeys) {
   // 20 mm on 800 steps per 3.175 mm: floor(20000 x 800 / 3175) = 5039 steps,
   // toward the chuck (negative) for a right-hand thread.
   const int64_t end = -5039;
-  sim::ThreadSpec spec{1000, 1};
+  sim::ThreadSpec spec;
+  spec.pitch_num = 1000;
+  spec.pitch_den = 1;
   spec.counts_per_turn = 40;
   for (int pass = 1; pass <= 2; ++pass) {
     const uint64_t changes_before = p.lcd->changes();
@@ -238,6 +241,30 @@ TEST(LatheOperator, MoveShowsItsProgressBar) {
   }
   EXPECT_GE(full, 75u);
   EXPECT_GT(bars.size(), 10u);
+}
+
+// The keypad through the firmware's scan: a key held 1.5 s types once,
+// contacts bouncing for up to 12 ms (10 flips) still type once each, and
+// two keys of one row held together read as the first in scan order.
+TEST(LatheOperator, KeysTypeOncePerPressWhateverTheBounce) {
+  sim::KeypadTiming rough;
+  rough.bounce_s = 0.012;
+  rough.bounces = 10;
+  Panel p({}, 0, rough);
+  p.run_to(1.8);
+  p.type("1");
+  EXPECT_EQ(p.row0(), "Pitch mm A:TPI  ");
+  p.keys->press('7', p.now() + 0.01, 1.5);
+  p.run_to(p.now() + 1.8);
+  EXPECT_EQ(p.row1(), "7_              ");
+  p.type("#25");
+  EXPECT_EQ(p.row1(), "7.25_           ");
+  const double at = p.now() + 0.01;
+  p.keys->press('4', at, 0.3);  // 4 and 6 share a row; 4's column is scanned first
+  p.keys->press('6', at, 0.3);
+  p.run_to(at + 0.5);
+  EXPECT_EQ(p.row1(), "7.254_          ");
+  EXPECT_GT(p.keys->applied(), 100u);  // the flips did reach the pins
 }
 
 TEST(LatheOperator, SettingsGoThroughTheEepromAndBack) {
