@@ -174,7 +174,7 @@ TEST(LathePasses, BadLinesAreRefusedAndNothingMoves) {
       {"G33 Z-10 K1 D3 E3", "error: E must be below D"},
       {"G33 Z-10 K1 D0", "error: D must be 1..255"},
       {"G33 Z-10 K1 D1.5", "error: D must be 1..255"},
-      {"G33 Z-10 K200", "error: over 15 steps per count"},
+      {"G33 Z-10 K200", "error: 16 or more steps per count"},
       {"G33 Z-10 K1 F100", "error: word not used here"},
       {"G33 Z-10 K1 Q2", "error: unsupported word letter"},
       {"G33 Z-10 K1 K2", "error: word given twice"},
