@@ -31,7 +31,7 @@ struct ThreadSpec {
   int64_t pitch_num, pitch_den;  // um = num / den
   int starts = 1, start = 0;
   bool right_hand = true;
-  int64_t counts_per_turn;
+  int64_t counts_per_turn = 0;
   int64_t steps_per_turn = 800;
   int64_t screw_num = 25400, screw_den = 8;  // the leadscrew's pitch, um: 3.175 mm
 };

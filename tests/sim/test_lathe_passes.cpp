@@ -32,6 +32,14 @@ sim::ThreadSpec spec(int64_t um, int64_t counts, int starts = 1, int start = 0) 
   return t;
 }
 
+// Sends a pass on the 2400-count encoder, runs `seconds`, checks every count.
+sim::PassResult quadrature_pass(LatheRig& rig, const std::string& g33, int64_t um, double seconds) {
+  EXPECT_EQ(rig.send(g33), "ok");
+  const uint64_t armed = rig.armed_after();
+  rig.run_for(seconds);
+  return sim::check_pass(*rig.spindle, rig.z(), *rig.step, spec(um, 2400), 0, armed, rig.m->cycles());
+}
+
 // The spindle turns at 600 rpm before the pass: the carriage waits for the
 // index, then for the target to pass it, catches up at most at the board's
 // acceleration (20000 steps/s^2) and locks; from then every count is exact.
@@ -39,11 +47,7 @@ TEST(LathePasses, EngagesARunningSpindleWithBoundedAcceleration) {
   LatheRig rig(quadrature({{0, 600}}));
   ASSERT_EQ(rig.send("ENCODER C600 E4"), "ok");
   rig.run_for(0.3);
-  ASSERT_EQ(rig.send("G33 Z-500 K1.5"), "ok");
-  const uint64_t armed = rig.armed_after();
-  rig.run_for(3);
-  const sim::PassResult r =
-      sim::check_pass(*rig.spindle, rig.z(), *rig.step, spec(1500, 2400), 0, armed, rig.m->cycles());
+  const sim::PassResult r = quadrature_pass(rig, "G33 Z-500 K1.5", 1500, 3);
   ASSERT_TRUE(r.index_found);
   ASSERT_TRUE(r.locked);
   EXPECT_EQ(r.mismatches, 0u);
@@ -77,11 +81,7 @@ TEST(LathePasses, EngagesARunningSpindleWithBoundedAcceleration) {
 TEST(LathePasses, SpindleReversalKeepsThePhase) {
   LatheRig rig(quadrature({{0.2, 0}, {0.5, 300}, {2.0, 300}, {2.6, -300}, {4.0, -300}, {4.6, 200}, {5.2, 200}, {5.5, 0}}));
   ASSERT_EQ(rig.send("ENCODER C600 E4"), "ok");
-  ASSERT_EQ(rig.send("G33 Z-200 K2"), "ok");
-  const uint64_t armed = rig.armed_after();
-  rig.run_for(5.8);
-  const sim::PassResult r =
-      sim::check_pass(*rig.spindle, rig.z(), *rig.step, spec(2000, 2400), 0, armed, rig.m->cycles());
+  const sim::PassResult r = quadrature_pass(rig, "G33 Z-200 K2", 2000, 5.8);
   ASSERT_TRUE(r.locked);
   EXPECT_EQ(r.mismatches, 0u);
   EXPECT_EQ(r.position, r.expected);
@@ -174,7 +174,7 @@ TEST(LathePasses, BadLinesAreRefusedAndNothingMoves) {
       {"G33 Z-10 K1 D3 E3", "error: E must be below D"},
       {"G33 Z-10 K1 D0", "error: D must be 1..255"},
       {"G33 Z-10 K1 D1.5", "error: D must be 1..255"},
-      {"G33 Z-10 K200", "error: over 15 steps per count"},
+      {"G33 Z-10 K200", "error: 16 or more steps per count"},
       {"G33 Z-10 K1 F100", "error: word not used here"},
       {"G33 Z-10 K1 Q2", "error: unsupported word letter"},
       {"G33 Z-10 K1 K2", "error: word given twice"},

@@ -34,10 +34,11 @@ struct Thread {
 // Runs one pass "G33 Z-<far> <words>" with the spindle starting from rest
 // (0.2 s) up to the encoder's rpm in 0.3 s, `turns` turns at that speed,
 // then down to rest; returns the check of every count.
-sim::PassResult cut(const Encoder& e, const Thread& t, double turns, bool left = false) {
+sim::PassResult cut(const Encoder& e, const Thread& t, double turns, bool left = false, double jitter_us = 0) {
   sim::SpindleParams p;
   p.lines = e.lines;
   p.quadrature = e.quadrature;
+  p.jitter_us = jitter_us;
   const double spin_s = turns / (e.rpm / 60);
   p.profile = {{0.2, 0}, {0.5, e.rpm}, {0.5 + spin_s, e.rpm}, {0.8 + spin_s, 0}};
   LatheRig rig(p);
@@ -102,6 +103,16 @@ TEST(LatheThread, PitchesFromTheTablesBothHands) {
     const sim::PassResult r = cut(kQuadratureSlow, t, 4, left);
     expect_exact(r, std::string("G33 ") + t.words + (left ? " left" : " right"), 4.0 * 2400);
     left = !left;
+  }
+}
+
+// Edges up to +-10 us off their times (a quadrature edge every 42 us at 600
+// rpm): the counts, not their timing, make the thread.
+TEST(LatheThread, JitteredEdgesCutTheSameThread) {
+  const Thread mm15 = {"K1.5", 1500, 1};
+  for (const Encoder& e : {kSeedDisc, kQuadrature}) {
+    const sim::PassResult r = cut(e, mm15, 6, false, 10);
+    expect_exact(r, std::string(e.command) + " G33 K1.5, jitter 10 us", 6.0 * e.lines * (e.quadrature ? 4 : 1));
   }
 }
 

@@ -38,6 +38,8 @@ TEST(LatheTiming, PulsesAndCountsAtHighEdgeRates) {
       {600, true, 1000, "G33 Z-900 K3", 3000, 1},
       // The same at 1100 rpm (44000 counts/s), 1 mm.
       {600, true, 1100, "G33 Z-900 K1", 1000, 1},
+      // 1200 rpm (48000 counts/s), 0.5 mm: the benchmark's highest exact x4 rate.
+      {600, true, 1200, "G33 Z-900 K0.5", 500, 1},
       // The seed disc at 1000 rpm, 13 TPI: 12 or 13 steps per count, in bursts.
       {40, false, 1000, "G33 Z-900 P13", 25400, 13},
   };

@@ -162,13 +162,7 @@ void on_line(Reader::Line line) {
 
 }  // namespace
 
-void banner() {
-  hal::uart::write_P(PSTR("avrmotion " AVRMOTION_VERSION " board="));
-  hal::uart::write_P(PSTR(AVRMOTION_BOARD_NAME " mcu=" AVRMOTION_MCU_NAME));
-  hal::uart::write_P(PSTR(" f_cpu="));
-  hal::uart::write_u32(F_CPU);
-  hal::uart::write('\n');
-}
+void banner() { reply::banner(); }
 
 void poll() {
   path::pump();

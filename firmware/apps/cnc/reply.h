@@ -1,5 +1,6 @@
 // The answers every line of the cnc protocol ends with: `ok`, or
-// `error: <reason>` (docs/protocol.md, docs/gcode.md).
+// `error: <reason>` (docs/protocol.md, docs/gcode.md), and the banner the
+// firmware greets the host with; the lathe's front end answers the same way.
 #pragma once
 #include <avr/pgmspace.h>
 
@@ -8,6 +9,14 @@
 namespace reply {
 
 inline void ok() { hal::uart::write_P(PSTR("ok\n")); }
+
+inline void banner() {
+  hal::uart::write_P(PSTR("avrmotion " AVRMOTION_VERSION " board="));
+  hal::uart::write_P(PSTR(AVRMOTION_BOARD_NAME " mcu=" AVRMOTION_MCU_NAME));
+  hal::uart::write_P(PSTR(" f_cpu="));
+  hal::uart::write_u32(F_CPU);
+  hal::uart::write('\n');
+}
 
 inline void error(const char* progmem_reason) {
   hal::uart::write_P(PSTR("error: "));

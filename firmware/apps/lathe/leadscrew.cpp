@@ -6,9 +6,12 @@
 // starts and ends passes and moves with interrupts off. Vectors do not nest,
 // so each one sees the others' work whole.
 //
-// Speed over size for the vectors only: they are built at -O2 with the
-// decoder, the follower's update and the step pulses inlined (kFast); the
-// rest of the file stays at the image's -Os.
+// Speed over size for the counts' path only (kFast: -O2): the vectors, with
+// the decoder and the step's rise inlined, and the functions they call per
+// count (the follower's update, the pulse's end, the unlocked count); the
+// rest of the file stays at the image's -Os. The update is called, not
+// inlined: inlined, every vector pushed 29 registers before its step;
+// called, 16 (docs/lathe.md, "Still missing", has what a count costs).
 #include "leadscrew.h"
 
 #include <avr/interrupt.h>

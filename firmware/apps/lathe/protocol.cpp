@@ -27,6 +27,7 @@
 #include "../../../core/text/line_reader.h"
 #include "../../../hal/avr/uart.h"
 #include "../../board.h"
+#include "../cnc/reply.h"
 #include "leadscrew.h"
 
 namespace protocol {
@@ -37,13 +38,8 @@ Reader reader;
 bool tainted;  // bytes were lost: refuse lines until one ends with the ring empty
 bool waiting;  // a WAIT is answered when the leadscrew is idle
 
-void ok() { hal::uart::write_P(PSTR("ok\n")); }
-
-void error(const char* progmem_reason) {
-  hal::uart::write_P(PSTR("error: "));
-  hal::uart::write_P(progmem_reason);
-  hal::uart::write('\n');
-}
+using reply::error;
+using reply::ok;
 
 const char* parse_error_text(am::GcodeError e) {
   switch (e) {
@@ -63,7 +59,7 @@ const char* refusal_text(leadscrew::Refusal r) {
   switch (r) {
     case leadscrew::Refusal::busy: return PSTR("busy");
     case leadscrew::Refusal::bad_start: return PSTR("E must be below D");
-    case leadscrew::Refusal::too_steep: return PSTR("over 15 steps per count");
+    case leadscrew::Refusal::too_steep: return PSTR("16 or more steps per count");
     case leadscrew::Refusal::phase_range: return PSTR("start phase out of range");
     case leadscrew::Refusal::limit: return PSTR("limit switch hit");
     case leadscrew::Refusal::bad_rate: return PSTR("feed must be above 0");
@@ -216,13 +212,7 @@ void on_line(const char* p) {
 
 }  // namespace
 
-void banner() {
-  hal::uart::write_P(PSTR("avrmotion " AVRMOTION_VERSION " board="));
-  hal::uart::write_P(PSTR(AVRMOTION_BOARD_NAME " mcu=" AVRMOTION_MCU_NAME));
-  hal::uart::write_P(PSTR(" f_cpu="));
-  hal::uart::write_u32(F_CPU);
-  hal::uart::write('\n');
-}
+void banner() { reply::banner(); }
 
 void poll() {
   if (waiting) {
