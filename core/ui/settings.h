@@ -16,7 +16,7 @@
 //   instead of the lead in mm.
 //
 // Why one uint32_t per field: one range check, one entry screen and one
-// table row serve every field; the block is 30 bytes.
+// table row serve every field; the block is 34 bytes.
 #pragma once
 #include <stdint.h>
 

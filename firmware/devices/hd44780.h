@@ -10,15 +10,17 @@
 //   2 lines 5x8, display off, clear, entry mode increment, display on),
 //   loads the progress-bar glyphs 1..5 (1..5 columns lit, am::ui::Screen)
 //   into the character RAM and leaves the display blank. It waits with
-//   delay loops, about 60 ms in all (the controller needs > 40 ms after
-//   power-up), so it runs once at start-up; interrupts may be on or off.
+//   delay loops (the controller needs > 40 ms after power-up; on the
+//   m16-panel the first screen shows 67 ms after reset, docs/simulator.md),
+//   so it runs once at start-up; interrupts may be on or off.
 //   poll(screen) does at most one bus operation per call: a busy-flag read
 //   and then either one address instruction or one character of a cell the
 //   screen marks dirty (the bit is cleared once the character is written).
-//   It never waits and never turns interrupts off: a call is about 30 us
-//   with the busy read (the pulses' widths are held by a few cycles of delay),
-//   and interrupts served meanwhile only stretch a pulse, which the
-//   controller tolerates (it has minimum widths, no maximum). Returns true
+//   It never waits for the controller and never turns interrupts off: a call
+//   is the busy read's two E pulses and at most two more (the pulses' widths
+//   are held by a few cycles of delay), and interrupts served meanwhile
+//   only stretch a pulse, which the controller tolerates (it has minimum
+//   widths, no maximum). Returns true
 //   when the display shows the whole screen.
 //   Busy flag with a timeout fallback: the driver reads BF (RW high) before
 //   each operation and goes on when it reads 0, or when twice the
@@ -28,8 +30,9 @@
 //   the datasheet's timing.
 //
 // Why a character per call: the spindle's edge interrupt must keep its
-// latency and the main loop its pace; the whole screen (32 characters and
-// up to 4 address instructions) reaches the display in 36 calls.
+// latency and the main loop its pace; a whole new screen (32 characters,
+// an address instruction at the start of each row) reaches the display in
+// 34 calls, and only the cells that changed are sent at all.
 #pragma once
 #include <stdint.h>
 

@@ -18,7 +18,8 @@
 //   (column by column, top to bottom). Bounce shorter than (kStableScans - 1)
 //   x kScanMs = 15 ms never makes an event; a press is accepted 15 to 20 ms
 //   after its contact settles.
-//   A scan is 4 column selects, about 8 us, with interrupts on.
+//   A scan is 4 column selects, each held about 1 us for the rows to
+//   settle, with interrupts on.
 #pragma once
 #include <stdint.h>
 

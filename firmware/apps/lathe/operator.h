@@ -4,7 +4,8 @@
 //
 // Contract
 //   init() after leadscrew::init() and sei() (the settings block is read
-//   from the EEPROM, the display brought up: about 60 ms): an invalid block
+//   from the EEPROM, the display brought up: its first screen 67 ms after
+//   reset in the simulator): an invalid block
 //   (erased, corrupted, another layout) is replaced by the board's machine
 //   and the screen says so. The encoder settings go to
 //   leadscrew::set_encoder(). poll() from the main loop: one key scan when
