@@ -139,8 +139,11 @@ TEST(LathePasses, LimitSwitchStopsAtOnce) {
   ASSERT_EQ(rig.send("G33 Z-500 K1"), "ok");
   rig.run_for(2);
   ASSERT_EQ(field(rig.status(), "state"), "locked");
+  // The switch's pin as the image's descriptor names it (PD7).
+  const uint8_t limit = rig.m->board().spindle_pins[3];
+  ASSERT_NE(limit, am::kNoPin);
   const uint64_t hit = rig.m->cycles();
-  rig.m->set_input('D', 7, false);
+  rig.m->set_input(am::pin_port(limit), am::pin_bit(limit), false);
   rig.run_for(0.5);
   const auto& c = rig.z().step_cycles;
   const uint64_t last = c.back();
@@ -157,7 +160,7 @@ TEST(LathePasses, LimitSwitchStopsAtOnce) {
   EXPECT_EQ(field(st, "last"), "limit") << st;
   EXPECT_EQ(rig.send("G33 Z-500 K1"), "error: limit switch hit");
   EXPECT_EQ(rig.send("G0 Z5"), "error: limit switch hit");
-  rig.m->set_input('D', 7, true);
+  rig.m->set_input(am::pin_port(limit), am::pin_bit(limit), true);
   EXPECT_EQ(rig.send("G0 Z0"), "ok");
 }
 
