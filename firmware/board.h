@@ -38,6 +38,13 @@ constexpr bool kCommands = true;
 using Endstops = EndstopSet<AxisSet<>, false>;
 constexpr bool kHoming = false;
 constexpr HomingSettings<1> kHomingSettings = {};
+// The lathe program's operator panel (firmware/apps/lathe/operator.h) in
+// place of its UART front end.
+constexpr bool kOperatorPanel = false;
+// A lathe's spindle encoder and limit switch (firmware/boards/m16-lathe.h),
+// named in the descriptor for the simulator.
+constexpr bool kSpindleEncoder = false;
+struct SpindlePins;  // A, B, Index, Limit: only with kSpindleEncoder
 }  // namespace board_defaults
 namespace board {
 using namespace board_defaults;

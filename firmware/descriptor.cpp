@@ -30,6 +30,20 @@ constexpr am::AxisDescriptor with_endstop(am::AxisDescriptor d) {
   return d;
 }
 
+// The spindle encoder's wiring, on a lathe board (board.h: kSpindleEncoder).
+template <bool Present, typename Hw = board::SpindlePins>
+struct SpindleWiring {
+  static constexpr uint8_t a = am::kNoPin, b = am::kNoPin, index = am::kNoPin, limit = am::kNoPin;
+};
+template <typename Hw>
+struct SpindleWiring<true, Hw> {
+  static constexpr uint8_t a = am::pin_code(Hw::A::port, Hw::A::bit);
+  static constexpr uint8_t b = am::pin_code(Hw::B::port, Hw::B::bit);
+  static constexpr uint8_t index = am::pin_code(Hw::Index::port, Hw::Index::bit);
+  static constexpr uint8_t limit = am::pin_code(Hw::Limit::port, Hw::Limit::bit);
+};
+using Spindle = SpindleWiring<board::kSpindleEncoder>;
+
 template <typename Set>
 struct Describe;
 
@@ -43,7 +57,8 @@ struct Describe<AxisSet<Axes...>> {
                                        (board::kCommands ? am::kProgramCommands : 0) |
                                        (board::kRealtime ? am::kProgramRealtime : 0)),
                                {0, 0, 0},
-                               {with_endstop(Axes::descriptor())...}};
+                               {with_endstop(Axes::descriptor())...},
+                               {Spindle::a, Spindle::b, Spindle::index, Spindle::limit}};
   }
 };
 

@@ -57,6 +57,7 @@ struct Result {
   Figures figures;
   SizeRow size;
   HeaterFigures heater;
+  LatheFigures lathe;
 };
 static_assert(std::is_trivially_copyable<Result>::value, "a Result crosses a pipe as bytes");
 static_assert(sizeof(Result) <= PIPE_BUF, "a Result fits the pipe in one write");
@@ -162,9 +163,15 @@ SizeRow measure_size(const std::string& dir, const char* name) {
   elf_end(elf);
   close(fd);
   sim::Machine m(path);
-  if (std::string(name) != "m32-driver") {
+  if (std::string(name) == "m16-lathe") {
+    // The lathe's deepest line: a three-start thread's ratio and phase.
+    for (const char* line : {"ENCODER C600 E4", "G33 Z-10 P13 D3 E2", "STOP", "?", "G0 Z0.1"})
+      m.serial().add_line(line);
+    m.run_script(16000000ull * 10);
+    r.stack = m.stack_bytes();
+  } else if (std::string(name) != "m32-driver") {
     const std::string axis(1, m.axes().front().name);
-    if (std::string(name) == "m32") {  // the printer: G-code only (firmware/boards/m32.h)
+    if (!(m.board().program & am::kProgramCommands)) {  // G-code only: the printer, the mill
       m.serial().add_line("G91");
       m.serial().add_line("G1 " + axis + "0.2 F120");
       m.serial().add_line("M114");
@@ -213,9 +220,9 @@ class Progress {
   }
   void ended(size_t i, const Job& job, const Result& r, double seconds) {
     ++ended_;
-    const bool heater = job.name.rfind("heater ", 0) == 0;
-    const bool inexact =
-        r.done && job.name.rfind("size ", 0) != 0 && (heater ? !r.heater.ok : !r.figures.ok);
+    const bool heater = job.name.rfind("heater ", 0) == 0, lathe = job.name.rfind("lathe ", 0) == 0;
+    const bool inexact = r.done && job.name.rfind("size ", 0) != 0 &&
+                         (heater ? !r.heater.ok : lathe ? !r.lathe.ran : !r.figures.ok);
     std::fprintf(stderr, "avrmotion-bench: [%zu/%zu] %s %s in %.1f s (%zu of %zu ended, %.1f s since the start)%s%s\n",
                  i + 1, total_, r.done ? "done" : "BROKEN", job.name.c_str(), seconds, ended_, total_,
                  seconds_since(start_), r.done ? "" : ": ", r.done ? (inexact ? ": NOT EXACT" : "") : r.error);
@@ -349,6 +356,11 @@ int main(int argc, char** argv) {
   }
   // The hot end's run is the longest: first.
   jobs.insert(jobs.begin(), Job{"heater m32 M104 S200", [&dir](Result& r) { r.heater = measure_heater(dir); }});
+  const size_t first_lathe_job = jobs.size();
+  for (const LatheScenario& s : lathe_scenarios()) {
+    jobs.push_back({std::string("lathe ") + s.label + " " + s.pitch + " " + std::to_string(int(s.rpm)) + " rpm",
+                    [&dir, s](Result& r) { r.lathe = measure_lathe(dir, s); }});
+  }
   const size_t first_size_job = jobs.size();
   for (const char* name : kSizeImages) {
     jobs.push_back({std::string("size ") + name, [&dir, name](Result& r) { r.size = measure_size(dir, name); }});
@@ -367,7 +379,9 @@ int main(int argc, char** argv) {
     if (!results[i].done) {
       unfinished = true;
       std::fprintf(stderr, "avrmotion-bench: %s: %s\n", jobs[i].name.c_str(), results[i].error);
-    } else if (i == 0 ? !results[i].heater.ok : i < first_size_job && !results[i].figures.ok) {
+    } else if (i == 0 ? !results[i].heater.ok
+                      : i < first_lathe_job ? !results[i].figures.ok
+                                            : i < first_size_job && !results[i].lathe.ran) {
       inexact = true;
     }
   }
@@ -375,6 +389,8 @@ int main(int argc, char** argv) {
 
   std::vector<SizeRow> sizes;
   for (size_t i = first_size_job; i < results.size(); ++i) sizes.push_back(results[i].size);
+  std::vector<LatheFigures> lathe;
+  for (size_t i = first_lathe_job; i < first_size_job; ++i) lathe.push_back(results[i].lathe);
   std::vector<std::vector<Figures>> engine;
   size_t k = 1;  // after the heater's job
   for (const Table& t : tables) {
@@ -384,6 +400,7 @@ int main(int argc, char** argv) {
   print_sizes(sizes);
   for (size_t t = 0; t < tables.size(); ++t) print_engine(tables[t], engine[t].data());
   print_heater(heater);
+  print_lathe(lathe);
   std::fflush(stdout);
 
   if (unfinished || inexact) {
@@ -394,7 +411,7 @@ int main(int argc, char** argv) {
     return unfinished ? 2 : 1;
   }
   if (!markdown_path.empty()) {
-    const std::string page = markdown(sizes, engine, heater);
+    const std::string page = markdown(sizes, engine, heater, lathe);
     FILE* out = std::fopen(markdown_path.c_str(), "w");
     const bool written = out && std::fwrite(page.data(), 1, page.size(), out) == page.size();
     if (!out || std::fclose(out) != 0 || !written) {

@@ -52,6 +52,32 @@ struct HeaterFigures {
 constexpr double kHeaterSeconds = 200;
 HeaterFigures measure_heater(const std::string& firmware_dir);
 
+// The lathe (sim/bench_lathe.cpp): one locked pass on the m16-lathe image
+// at a steady spindle speed (sim/lathe_run.h).
+struct LatheScenario {
+  const char* label;   // the encoder: "x4" (600-line quadrature) or "x1" (600 lines, one channel)
+  bool quadrature;
+  double rpm;
+  double ramp_s;       // from rest to rpm (and back)
+  const char* pitch;   // G33's pitch word
+  int64_t pitch_num, pitch_den;  // um
+};
+struct LatheFigures {
+  bool ran = false;
+  double edge_rate = 0;        // counts/s at rpm
+  int64_t counts = 0;          // the model's
+  int64_t firmware_counts = 0;
+  int64_t lost = 0;            // the firmware's doubtful counts
+  bool exact = false;          // locked, every count exact after, no count lost
+  uint64_t latency_max = 0;    // cycles: a count's edge to its first step's rise
+  uint64_t vector_max = 0;     // INT0/INT1 entry to RETI
+  double step_rate = 0;        // steps/s, the busiest 10 ms
+  uint64_t pulse_min = 0;      // the shortest step pulse, cycles
+};
+const std::vector<LatheScenario>& lathe_scenarios();
+LatheFigures measure_lathe(const std::string& firmware_dir, const LatheScenario& s);
+void print_lathe(const std::vector<LatheFigures>& figures);
+
 // One image's row of the size table.
 struct SizeRow {
   bool found = false;  // the image exists (a missing one has no row)
@@ -72,7 +98,7 @@ const std::vector<Table>& engine_tables();
 std::string move_line(const Scenario& s);
 
 // The images of the size table, in its order.
-extern const char* const kSizeImages[7];
+extern const char* const kSizeImages[8];
 
 // Each part's flash and RAM, bytes.
 struct PartSize {
@@ -88,6 +114,6 @@ void print_heater(const HeaterFigures& h);
 // The Markdown page: the same figures as the tables on standard output,
 // formatted alike, and nothing that changes from run to run.
 std::string markdown(const std::vector<SizeRow>& sizes, const std::vector<std::vector<Figures>>& engine,
-                     const HeaterFigures& heater);
+                     const HeaterFigures& heater, const std::vector<LatheFigures>& lathe);
 
 }  // namespace bench

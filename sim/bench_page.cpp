@@ -75,7 +75,7 @@ void print_heater(const HeaterFigures& h) {
 // standard output, formatted alike, and nothing that changes from run to run
 // (no date, no wall time), so the page only changes when a figure does.
 std::string markdown(const std::vector<SizeRow>& sizes, const std::vector<std::vector<Figures>>& engine,
-                     const HeaterFigures& heater) {
+                     const HeaterFigures& heater, const std::vector<LatheFigures>& lathe) {
   std::string o;
   auto add = [&](const std::string& s) { o += s; };
   add("# Benchmarks\n\n"
@@ -145,11 +145,38 @@ std::string markdown(const std::vector<SizeRow>& sizes, const std::vector<std::v
                 (unsigned long long)heater.sample_cycles_max, heater.samples);
   add(row);
 
+  add("## Lathe (m16-lathe)\n\n"
+      "One locked `G33 Z-900 <pitch>` pass per row on the simulated spindle (`sim/spindle_encoder.h`,\n"
+      "[lathe.md](lathe.md)): a 600-line encoder counted x4 (quadrature, 2400 counts a turn) or x1\n"
+      "(one channel, 600), from rest to the row's rpm, 0.5 s there, back to rest. *counts*: the\n"
+      "encoder model's; *firmware*: the image's count; *lost*: counts its decoder could not be\n"
+      "sure of; *exact*: locked, every count after the lock on floor(lambda s), no count lost.\n"
+      "*latency*: cycles from the count's edge to its first step's rise (16 per us), the most\n"
+      "over the run's stepping counts; *vector*: the longest INT0/INT1 run, entry to RETI;\n"
+      "*steps/s*: the busiest 10 ms; *pulse*: the shortest step pulse, cycles. The 4 TPI row\n"
+      "ramps over 3 s, so that the carriage locks while the target is still slow.\n\n"
+      "| encoder | pitch | rpm | counts/s | counts | firmware | lost | exact | latency | vector | steps/s | pulse |\n"
+      "|---|---|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|\n");
+  double best[2] = {0, 0};
+  for (size_t i = 0; i < lathe.size(); ++i) {
+    const LatheScenario& s = lathe_scenarios()[i];
+    const LatheFigures& f = lathe[i];
+    add(std::string("| ") + s.label + " | " + s.pitch + " | " + format("%.0f", s.rpm) + " | " +
+        format("%.0f", f.edge_rate) + " | " + std::to_string(f.counts) + " | " + std::to_string(f.firmware_counts) +
+        " | " + std::to_string(f.lost) + " | " + (f.exact ? "yes" : "NO") + " | " + std::to_string(f.latency_max) +
+        " | " + std::to_string(f.vector_max) + " | " + format("%.0f", f.step_rate) + " | " +
+        std::to_string(f.pulse_min) + " |\n");
+    double& b = best[s.quadrature ? 0 : 1];
+    if (f.exact && f.edge_rate > b) b = f.edge_rate;
+  }
+  add(format("\nHighest exact rate: x4 %.0f counts/s, ", best[0]) + format("x1 %.0f counts/s.\n\n", best[1]));
+
   add("## Image sizes\n\n"
       "Flash is `.text + .data`, RAM is `.data + .bss` (static data), both read from the\n"
       "ELF. Stack is the deepest byte the image wrote below its static data, found by\n"
       "painting the free RAM before reset, on a demo-like run (`MOVE <first axis>200\n"
-      "F2000 A8000`, then `POS`); the driver board takes no commands, so its stack is\n"
+      "F2000 A8000`, then `POS`; the lathe: `ENCODER C600 E4`, `G33 Z-10 P13 D3 E2`, `STOP`,\n"
+      "`?`, `G0 Z0.1`); the driver board takes no commands, so its stack is\n"
       "not measured. Percentages are of the flash an image may fill (on the Uno the\n"
       "bootloader keeps 512 bytes) and of the part's RAM.\n\n"
       "| image | MCU | clock | flash (B) | of flash | RAM (B) | of RAM | stack (B) | of RAM | RAM + stack |\n"

@@ -2,6 +2,8 @@
 // over its UART, or offers the UART as a pseudo-terminal to a program
 // (--pty, pty_run.h), and reports what the motors did
 // (docs/simulator-report.md, docs/simulator.md).
+#include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
@@ -11,11 +13,14 @@
 #include <vector>
 
 #include "endstops.h"
+#include "keypad_model.h"
+#include "lcd_model.h"
 #include "machine.h"
 #include "plot.h"
 #include "progress.h"
 #include "pty_run.h"
 #include "report.h"
+#include "spindle_encoder.h"
 #include "thermal_plant.h"
 #include "vcd.h"
 
@@ -28,7 +33,9 @@ void usage() {
                "       avrmotion-sim (--board NAME | --elf FILE) --pty [--link PATH] [--speed N|max] [--linger S]\n"
                "                     [--report FILE] [--plot FILE.svg] [--vcd ...] [--max-seconds S] [--progress]\n"
                "                     [--thermal-initial C] [--thermal-fault NAME@S] [--thermal-fan F@S]\n"
-               "  --board NAME        run " AVRMOTION_FIRMWARE_DIR "/avrmotion-NAME.elf (uno, m32, m16, m16-8mhz)\n"
+               "                     [--spindle-lines N] [--spindle-quadrature] [--spindle-rpm RPM@S]... [--spindle-jitter US]\n"
+               "                     [--lcd FILE|-] [--keys KEYS@S]...\n"
+               "  --board NAME        run " AVRMOTION_FIRMWARE_DIR "/avrmotion-NAME.elf (uno, m32, m16, m16-lathe, ...)\n"
                "  --input FILE        command lines to send (default: standard input); '#' starts a comment\n"
                "  --report FILE       JSON report (default: standard output)\n"
                "  --plot FILE.svg     pictures: per axis position, velocity, acceleration, step intervals\n"
@@ -53,6 +60,18 @@ void usage() {
                "  --endstop A=STEPS   axis A's switch at STEPS instead; more than once allowed\n"
                "  --endstop-bounce US each contact change bounces for US microseconds (default 0)\n"
                "  --no-endstops       no switches: every endstop stays open\n"
+               "  a board with a spindle encoder (m16-lathe) runs a simulated spindle (docs/lathe.md):\n"
+               "  --spindle-lines N   encoder lines per turn (default 40, the seed's disc)\n"
+               "  --spindle-quadrature  two channels a quarter line apart (default: one channel)\n"
+               "  --spindle-rpm RPM@S rpm at S seconds, linear between points, negative turns backward;\n"
+               "                      more than once (default 0@0: at rest)\n"
+               "  --spindle-jitter US each encoder edge up to +-US microseconds off its time\n"
+               "  the operator panel (m16-panel: HD44780 on PORTA, 4x4 keypad on PORTB, docs/lathe.md):\n"
+               "  --lcd FILE|-        the 2x16 display; every screen it showed, with its time, to FILE\n"
+               "                      (-: standard error)\n"
+               "  --keys KEYS@S       press KEYS (of 0-9 A-D * #) from S seconds on, one every 0.25 s, each\n"
+               "                      held 0.125 s and bouncing 4 ms; more than once allowed; the run lasts\n"
+               "                      until 1 s after the last key at least\n"
                "exit: 0 ran to the end (--pty: the client closed, or SIGINT/SIGTERM), 2 bad usage or image, 3 budget spent, 4 CPU stopped,\n"
                "      5 simavr reported an error (a dropped event: the run is not valid)\n";
 }
@@ -88,6 +107,11 @@ int main(int argc, char** argv) {
   std::vector<std::pair<char, int64_t>> endstop_at;
   sim::EndstopParams endstop_params;
   bool no_endstops = false;
+  std::string lcd_file;
+  std::vector<std::pair<std::string, double>> key_script;
+  sim::SpindleParams spindle;
+  spindle.profile.clear();
+  bool spindle_given = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const auto value = [&]() -> std::string {
@@ -126,6 +150,40 @@ int main(int argc, char** argv) {
         return 2;
       }
     } else if (a == "--no-endstops") no_endstops = true;
+    else if (a == "--lcd") lcd_file = value();
+    else if (a == "--keys") {
+      std::string keys;
+      double at = 0;
+      if (!split_at(value(), keys, at)) {
+        std::cerr << "avrmotion-sim: --keys needs KEYS@SECONDS\n";
+        return 2;
+      }
+      key_script.push_back({keys, at});
+    } else if (a == "--spindle-lines") {
+      const int n = std::atoi(value().c_str());
+      if (n < 1 || n > 16383) {
+        usage();
+        return 2;
+      }
+      spindle.lines = uint16_t(n), spindle_given = true;
+    } else if (a == "--spindle-quadrature") spindle.quadrature = true, spindle_given = true;
+    else if (a == "--spindle-jitter") spindle.jitter_us = std::atof(value().c_str()), spindle_given = true;
+    else if (a == "--spindle-rpm") {
+      std::string rpm;
+      double at = 0;
+      char* end = nullptr;
+      if (!split_at(value(), rpm, at)) {
+        usage();
+        return 2;
+      }
+      const double r = std::strtod(rpm.c_str(), &end);
+      if (*end || (!spindle.profile.empty() && at <= spindle.profile.back().t_s)) {
+        usage();
+        return 2;
+      }
+      spindle.profile.push_back({at, r});
+      spindle_given = true;
+    }
     else if (a == "--thermal-fault" || a == "--thermal-fan") {
       const std::string v = value();
       std::string what;
@@ -188,6 +246,47 @@ int main(int argc, char** argv) {
     } else if (!endstop_at.empty() || endstop_params.bounce_us > 0) {
       throw std::runtime_error("--endstop/--endstop-bounce: this board has no endstops (or --no-endstops)");
     }
+    std::unique_ptr<sim::SpindleEncoder> spindle_model;
+    if (machine.board().spindle_pins[0] != am::kNoPin) {
+      if (spindle.profile.empty()) spindle.profile.push_back({0, 0});
+      spindle_model.reset(new sim::SpindleEncoder(machine, spindle));
+    } else if (spindle_given) {
+      throw std::runtime_error("--spindle-*: this board has no spindle encoder");
+    }
+    // The panel: the display (its screens logged) and the keypad's script.
+    std::unique_ptr<sim::LcdModel> lcd;
+    std::unique_ptr<sim::KeypadModel> keypad;
+    std::ofstream lcd_out;
+    std::ostream* lcd_log = nullptr;
+    std::string pending_screen;
+    uint64_t pending_cycle = 0;
+    const auto log_screen = [&] {
+      char t[32];
+      std::snprintf(t, sizeof t, "%10.4f |", double(pending_cycle) / machine.f_cpu());
+      *lcd_log << t << pending_screen.substr(0, 16) << "|" << pending_screen.substr(17) << "|\n";
+    };
+    double keys_end_s = 0;
+    if (!lcd_file.empty() || !key_script.empty()) {
+      lcd.reset(new sim::LcdModel(machine));
+      keypad.reset(new sim::KeypadModel(machine));
+      for (const auto& k : key_script) keys_end_s = std::max(keys_end_s, keypad->type(k.first, k.second));
+      if (!lcd_file.empty()) {
+        if (lcd_file != "-") lcd_out.open(lcd_file);
+        lcd_log = lcd_file == "-" ? &std::cerr : &lcd_out;
+        // A screen is logged once it has stood for 5 ms: the characters of
+        // one redraw (about 2 ms) come as a single line.
+        lcd->on_change = [&] {
+          const uint64_t now = machine.cycles();
+          if (!pending_screen.empty() && now - pending_cycle >= machine.f_cpu() / 200) log_screen();
+          pending_screen = lcd->text();
+          pending_cycle = now;
+        };
+      }
+    }
+    if (keys_end_s > 0) {
+      const uint64_t until = uint64_t((keys_end_s + 1) * machine.f_cpu());
+      if (until < budget) end = machine.run([] { return false; }, until);
+    }
     if (pty) {
       sim::PtyPort port(link);
       std::cerr << "avrmotion-sim: pty " << port.path() << (link.empty() ? "" : " (link " + link + ")") << std::endl;
@@ -211,6 +310,7 @@ int main(int argc, char** argv) {
       end = sim::run_script_with_progress(machine, budget, progress ? &std::cerr : nullptr);
     }
     if (trace) trace->finish();
+    if (lcd_log && !pending_screen.empty()) log_screen();
     const sim::PtyStats* pty_stats = pty ? &stats : nullptr;
     if (report.empty()) {
       sim::write_report(std::cout, machine, end, pty_stats, plant.get());

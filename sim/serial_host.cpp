@@ -102,7 +102,7 @@ std::vector<std::string> SerialHost::reasons() const {
 
 std::vector<std::string> SerialHost::messages() const {
   std::vector<std::string> out;
-  for (size_t i = kBannerLines; i < received_.size(); ++i) {
+  for (size_t i = banner_lines_; i < received_.size(); ++i) {
     const std::string& l = received_[i];
     if (!is_ok(l) && l.rfind("error:", 0) != 0) out.push_back(l);
   }
@@ -122,8 +122,8 @@ bool SerialHost::answer_of(std::string& answer, std::string& reason) const {
     if (!is_ok(line)) return false;
     answer = line;
     size_t k = 1;
-    if (n > kBannerLines + 1 && before(1).rfind("Resend:", 0) == 0) k = 2;
-    if (n > kBannerLines + k && before(k).rfind("Error:", 0) == 0) {
+    if (n > banner_lines_ + 1 && before(1).rfind("Resend:", 0) == 0) k = 2;
+    if (n > banner_lines_ + k && before(k).rfind("Error:", 0) == 0) {
       answer = before(k);
       reason = answer.substr(6);
     }
@@ -131,7 +131,7 @@ bool SerialHost::answer_of(std::string& answer, std::string& reason) const {
   }
   if (!is_ok(line) && line.rfind("error:", 0) != 0) return false;
   answer = line;
-  const std::string& msg = n > kBannerLines + 1 ? before(1) : line;
+  const std::string& msg = n > banner_lines_ + 1 ? before(1) : line;
   if (!is_ok(line) && msg.rfind("[MSG:", 0) == 0 && msg.back() == ']') reason = msg.substr(5, msg.size() - 6);
   return true;
 }
@@ -152,8 +152,13 @@ void SerialHost::on_output(avr_irq_t*, uint32_t value, void* self) {
 void SerialHost::on_line(const std::string& line) {
   received_.push_back(line);
   received_cycles_.push_back(avr_->cycle);
-  const bool banner = received_.size() <= kBannerLines;
-  if (received_.size() == 1) marlin_ = line == "start";
+  const bool banner = received_.size() <= banner_lines_;
+  if (received_.size() == 1) {
+    marlin_ = line == "start";
+    // grbl's and Marlin's banners are two lines; the lathe's own front end
+    // greets with one ("avrmotion ...").
+    banner_lines_ = line.rfind("avrmotion ", 0) == 0 ? 1 : 2;
+  }
   std::string answer, reason;
   const bool answered = !banner && answer_of(answer, reason);
   if (relay_) {
@@ -165,7 +170,7 @@ void SerialHost::on_line(const std::string& line) {
     return;
   }
   if (banner) {
-    if (received_.size() == kBannerLines) send_next();  // the whole banner: the firmware is ready
+    if (received_.size() == banner_lines_) send_next();  // the whole banner: the firmware is ready
     return;
   }
   if (!answered || !awaiting_answer_) return;

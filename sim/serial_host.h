@@ -67,7 +67,8 @@ class SerialHost {
   // half-sent one; lines still waiting for an answer never get one. Returns
   // the number of bytes dropped.
   size_t on_reset();
-  bool banner_seen() const { return received_.size() >= kBannerLines; }  // both of its lines
+  bool banner_seen() const { return !received_.empty() && received_.size() >= banner_lines_; }  // all of its lines
+  size_t banner_lines() const { return banner_lines_; }
 
   const std::string& banner() const;
   const std::vector<std::string>& received() const { return received_; }
@@ -84,7 +85,7 @@ class SerialHost {
   // (pos, info lines, a refusal's reason line).
   std::vector<std::string> messages() const;
   bool marlin() const { return marlin_; }
-  static constexpr size_t kBannerLines = 2;
+  size_t banner_lines_ = 2;  // 1 for the lathe's one-line banner
 
  private:
   static void on_output(avr_irq_t* irq, uint32_t value, void* self);

@@ -59,9 +59,12 @@ struct BoardDescriptor {
   uint8_t program;  // kProgram* bits: what the image's line protocol takes
   uint8_t reserved[3];
   AxisDescriptor axes[kMaxAxes];
+  // A lathe's spindle encoder (kNoPin for all four on other boards): channel
+  // A, channel B (quadrature), the index, the carriage's limit switch.
+  uint8_t spindle_pins[4];
 };
 
 static_assert(sizeof(AxisDescriptor) == 12, "descriptor layout must match on host and AVR");
-static_assert(sizeof(BoardDescriptor) == 116, "descriptor layout must match on host and AVR");
+static_assert(sizeof(BoardDescriptor) == 120, "descriptor layout must match on host and AVR");
 
 }  // namespace am

@@ -112,6 +112,14 @@ class Follower {
   void advance() { edge(true); }   // as a forward spindle count
   void retreat() { edge(false); }  // as a backward spindle count
 
+  // What the next edge in that direction will add to position(), without
+  // making it: a controller issues those steps first and runs edge() after
+  // (the lathe's spindle vector: docs/lathe.md). Same arithmetic as move().
+  int32_t next_delta(bool spindle_forward) const {
+    const Step& s = step_[spindle_forward ? 1 : 0];
+    return int32_t(s.whole + (residual_ + s.rem >= den_ ? 1u : 0u));
+  }
+
   int32_t position() const { return int32_t(pos_); }
   // The exact fractional part: residual() / denominator() of a count.
   uint32_t residual() const { return residual_; }

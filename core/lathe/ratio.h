@@ -12,7 +12,9 @@
 //   minus the lead requested, in picometres per spindle turn, truncated toward
 //   zero and saturated to the int32 range (the seed's LCD showed this figure
 //   in um). out_of_range: a zero input, a reduced N or D above 64 bits, lambda
-//   >= 2^32, or the nearest fraction is 0.
+//   >= 2^32, or the nearest fraction is 0. gear_ratio_exact() is the same
+//   without the fallback: where gear_ratio() approximates, it says
+//   out_of_range.
 //
 // Exact inputs
 //   Pitches are rationals in micrometres: a metric pitch is an integer number
@@ -130,8 +132,12 @@ inline int32_t pitch_error_pm(const ThreadRequest& t, const Approximation& a, co
   return a.error_positive ? int32_t(mag) : -int32_t(mag);
 }
 
-inline GearRatio gear_ratio(const Machine& m, const ThreadRequest& t, uint32_t max_den = kMaxDen) {
+// The exact part of gear_ratio(): lambda reduced and, when it fits the
+// follower, status exact; else status out_of_range and den_limit the
+// denominator limit the fallback works to (0 when no fraction can do).
+inline GearRatio reduced_ratio(const Machine& m, const ThreadRequest& t, uint32_t max_den, uint32_t& den_limit) {
   GearRatio g = {RatioStatus::out_of_range, false, {0, 1}, u128(0), u128(1), 0};
+  den_limit = 0;
   g.reversed = (t.hand == Hand::left) != m.leadscrew_reversed;
   uint32_t n[4] = {t.pitch.num, t.starts, m.leadscrew.den, m.leadscrew_counts.num};
   uint32_t d[4] = {t.pitch.den, m.leadscrew.num, m.leadscrew_counts.den, m.spindle_counts};
@@ -146,18 +152,33 @@ inline GearRatio gear_ratio(const Machine& m, const ThreadRequest& t, uint32_t m
   if (cmp(N, d_shifted) >= 0) return g;             // lambda >= 2^32
 
   const uint32_t phase_scale = t.starts / gcd32(t.starts, m.spindle_counts);
-  uint32_t den_limit = kMaxDen / phase_scale;
+  den_limit = kMaxDen / phase_scale;
   if (max_den < den_limit) den_limit = max_den;
   if (fits32(N) && fits32(D) && D.w[0] <= den_limit) {
     g.status = RatioStatus::exact;
     g.ratio = {N.w[0], D.w[0]};
-    return g;
   }
-  const Approximation a = best_rational(N, D, 0xFFFFFFFFu, den_limit);
+  return g;
+}
+
+// gear_ratio() without the fallback: status exact, or out_of_range also
+// where gear_ratio() would approximate. For a program that refuses what it
+// cannot run exactly (and leaves the continued fraction, about 1.6 KB of
+// AVR flash, out of its image).
+inline GearRatio gear_ratio_exact(const Machine& m, const ThreadRequest& t) {
+  uint32_t den_limit;
+  return reduced_ratio(m, t, kMaxDen, den_limit);
+}
+
+inline GearRatio gear_ratio(const Machine& m, const ThreadRequest& t, uint32_t max_den = kMaxDen) {
+  uint32_t den_limit;
+  GearRatio g = reduced_ratio(m, t, max_den, den_limit);
+  if (g.status == RatioStatus::exact || den_limit == 0) return g;
+  const Approximation a = best_rational(g.exact_num, g.exact_den, 0xFFFFFFFFu, den_limit);
   if (a.num == 0) return g;
   g.status = RatioStatus::approximated;
   g.ratio = {a.num, a.den};
-  g.error_pm = pitch_error_pm(t, a, N);
+  g.error_pm = pitch_error_pm(t, a, g.exact_num);
   return g;
 }
 

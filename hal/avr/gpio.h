@@ -40,6 +40,7 @@ struct PortBits {
     _SFR_IO8(pin_reg + 2) = uint8_t((_SFR_IO8(pin_reg + 2) & uint8_t(~mask)) | (bits & mask));
   }
   static void output(uint8_t mask) { _SFR_IO8(pin_reg + 1) |= mask; }
+  static void input(uint8_t mask) { _SFR_IO8(pin_reg + 1) &= uint8_t(~mask); }
   static uint8_t read() { return _SFR_IO8(pin_reg); }  // every pin's level, one IN
 };
 

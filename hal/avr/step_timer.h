@@ -49,6 +49,16 @@ inline void halt() {
 
 inline void set_compare(uint16_t compare) { OCR1A = compare; }
 
+// The same CTC clock at F_CPU / 8 (one tick per 8 cycles: periods up to
+// 524280 cycles, 30.5 Hz at 16 MHz), for a pace slower than the step engine's
+// (the lathe's leadscrew moves).
+inline void start_div8(uint16_t compare) {
+  TCNT1 = 0;
+  OCR1A = compare;
+  HAL_TIMER1_FLAGS = _BV(OCF1A);
+  TCCR1B = _BV(WGM12) | _BV(CS11);
+}
+
 // Hardware step pulses on OC1A. The rising edge is made by the compare match
 // itself, so it lands on the exact timer tick whatever the interrupt latency;
 // the interrupt only ends the pulse (FOC with "clear" forces the pin low

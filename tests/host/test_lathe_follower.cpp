@@ -62,8 +62,13 @@ int64_t drive(am::Follower& f, const std::vector<int32_t>& moves, const Raw& r, 
   for (int32_t run : moves) {
     const bool fwd = run > 0;
     for (int32_t k = 0; k < (fwd ? run : -run); ++k) {
+      const int32_t before = f.position(), ahead = f.next_delta(fwd);
       f.edge(fwd);
       s += fwd ? 1 : -1;
+      if (int32_t(uint32_t(f.position()) - uint32_t(before)) != ahead) {
+        ADD_FAILURE() << what << ": next_delta() at s=" << s << " said " << ahead;
+        return s;
+      }
       if (s < dense && s > -dense && f.position() != expected(r.num, r.den, s, pn, pd, sign)) {
         ADD_FAILURE() << what << " at s=" << s;
         return s;

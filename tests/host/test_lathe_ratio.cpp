@@ -260,6 +260,34 @@ TEST(LatheRatio, ErrorReportMatchesDefinitionOnRandomMachines) {
   EXPECT_GT(approximated, 5000);
 }
 
+// gear_ratio_exact() is gear_ratio() where that is exact and refuses
+// (out_of_range) wherever gear_ratio() approximates or refuses.
+TEST(LatheRatio, ExactOnlyVariantRefusesWhatWouldBeApproximated) {
+  std::mt19937 rng(22);
+  int exact = 0, refused_approximation = 0;
+  for (int i = 0; i < 20000; ++i) {
+    auto pick = [&rng](uint32_t n) { return uint32_t(1 + rng() % n); };
+    const am::Machine m = {{pick(20000), pick(64)}, {pick(60000), pick(60)}, uint16_t(pick(5000)),
+                           bool(rng() & 1)};
+    const am::ThreadRequest t = {{pick(200000), pick(1000)}, uint8_t(pick(8)),
+                                 (rng() & 1) ? am::Hand::left : am::Hand::right};
+    const am::GearRatio full = am::gear_ratio(m, t);
+    const am::GearRatio only = am::gear_ratio_exact(m, t);
+    const Raw r = raw_lambda(m, t);
+    if (full.status == am::RatioStatus::exact) {
+      ++exact;
+      ASSERT_EQ(only.status, am::RatioStatus::exact) << i;
+      ASSERT_EQ(u128(only.ratio.num) * r.den, u128(only.ratio.den) * r.num) << i;
+      ASSERT_EQ(only.reversed, full.reversed);
+    } else {
+      if (full.status == am::RatioStatus::approximated) ++refused_approximation;
+      ASSERT_EQ(only.status, am::RatioStatus::out_of_range) << i;
+    }
+  }
+  EXPECT_GT(exact, 1000);
+  EXPECT_GT(refused_approximation, 1000);
+}
+
 TEST(LatheRatio, FallsBackOnlyWhenTheFollowerCannotHoldIt) {
   // lambda = 1 / (10^9 + 7): exact for one start (denominator below 2^31) ...
   const am::Machine m = {am::pitch_um(1), {1, 1}, 1, false};

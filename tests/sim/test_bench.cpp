@@ -128,7 +128,7 @@ TEST(Bench, ParallelPageHasEveryFigureAndTheDocsPageIsCurrent) {
   std::vector<std::vector<std::string>> engine, sizes;
   stdout_rows(r.out, engine, sizes);
   ASSERT_EQ(engine.size(), 13u) << r.out;  // the scenarios of sim/bench.cpp
-  ASSERT_EQ(sizes.size(), 6u) << r.out;  // uno, m32, m32-cnc, m32-driver, m16, m16-8mhz
+  ASSERT_EQ(sizes.size(), 7u) << r.out;  // uno, m32, m32-cnc, m32-driver, m16, m16-8mhz, m16-lathe
 
   // The page's rows, in order: the same figures in the same columns (the
   // page writes "45.5 %" where the terminal writes "45.5%", and puts the
@@ -184,9 +184,22 @@ TEST(Bench, ParallelPageHasEveryFigureAndTheDocsPageIsCurrent) {
   ASSERT_EQ(hot_out.size(), 7u) << r.out;  // to 200 C, overshoot, settled, hold, mean, max, samples
   EXPECT_EQ(hot_page, hot_out) << page;
 
-  // Progress: every job (the hot end, a scenario or a size row) starts and
-  // ends on standard error.
-  const size_t jobs = 1 + engine.size() + sizes.size();
+  // The lathe's rows ("x4 K0.5 800 32000 ...": twelve words): the figures
+  // the terminal prints, on the page.
+  std::vector<std::vector<std::string>> lathe_out, lathe_page;
+  for (const std::string& line : lines_of(r.out)) {
+    const std::vector<std::string> w = words(line);
+    if (w.size() == 12 && (w[0] == "x4" || w[0] == "x1")) lathe_out.push_back(w);
+  }
+  for (const std::string& line : lines_of(page)) {
+    if (line.rfind("| x4 | ", 0) == 0 || line.rfind("| x1 | ", 0) == 0) lathe_page.push_back(cells(line));
+  }
+  ASSERT_EQ(lathe_out.size(), 13u) << r.out;  // sim/bench_lathe.cpp's rows
+  EXPECT_EQ(lathe_page, lathe_out) << page;
+
+  // Progress: every job (the hot end, a scenario, a lathe row or a size
+  // row) starts and ends on standard error.
+  const size_t jobs = 1 + engine.size() + lathe_out.size() + sizes.size();
   size_t started = 0, ended = 0;
   for (const std::string& line : lines_of(r.err)) {
     started += line.find("] start ") != std::string::npos;

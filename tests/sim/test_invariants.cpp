@@ -130,7 +130,7 @@ void check_axis(const AxisCase& c, uint64_t seed, size_t count) {
   // What the firmware printed, in order: per move its clamp warning (if
   // any), ok, two errors, the position, ok.
   const std::vector<std::string>& got = m.serial().received();
-  size_t at = sim::SerialHost::kBannerLines;
+  size_t at = m.serial().banner_lines();
   if (c.mode) {
     ASSERT_EQ(got.at(at), "ok");
     ++at;
@@ -341,7 +341,7 @@ void check_coordinated(const CoordinatedCase& c, uint64_t seed, size_t count) {
 
   const std::vector<std::string>& got = m.serial().received();
   const std::vector<sim::Response>& resp = m.serial().responses();
-  size_t at = sim::SerialHost::kBannerLines;
+  size_t at = m.serial().banner_lines();
   int64_t worst = 0;
   std::vector<size_t> stamp(n_axes, 0);
   std::vector<int64_t> commanded(n_axes, 0);

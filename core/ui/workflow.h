@@ -1,0 +1,445 @@
+// The lathe's operator workflow: keys in, screen out, the leadscrew driven
+// through a small interface. Hardware-free; host-tested with a simulated
+// lathe (tests/host/test_ui_workflow.cpp) and run on the m16 by
+// firmware/apps/lathe/operator.cpp.
+//
+// Keys (the seed's 4x4 pad: 1 2 3 A / 4 5 6 B / 7 8 9 C / * 0 # D)
+//   digits and '#' (decimal point, once) type a number; D = OK, and stops the
+//   carriage at once while it moves (emergency stop); C deletes the last
+//   character typed, on an empty field or elsewhere it goes back (while the
+//   carriage moves it stops it too); A switches a pitch between mm and TPI,
+//   opens the settings from the menu and steps through them (after the
+//   last, the first); B on a pitch or feed entry types the table's next
+//   distinct value (tables.h) in place of the text, to be taken with D or
+//   edited; '*' first in a move's distance makes it negative.
+//
+// Screens (2 x 16)
+//   menu       "1Thr 2Feed 3Move" + the live line (spindle rpm, carriage Z
+//              mm): a thread (pitch in mm or TPI, typed or from the ISO or
+//              TPI table), a feed (mm per turn, typed or from the feed
+//              table, which holds the seed's 0.04 and 0.08), a move; A opens
+//              the settings
+//   entry      the prompt, and the text typed so far with a '_' cursor
+//   hand       "1Right 2Left"
+//   length     mm with 2 decimals, 0 = until stopped (D or the limit switch);
+//              the ratio is computed here (core/lathe/ratio.h's
+//              gear_ratio_exact): one the follower cannot run exactly is
+//              refused with a message, never approximated
+//   ready      "OK to cut pass N" + the live line
+//   cutting    "Wait index" until the leadscrew has synchronised, then the
+//              following error and the live line; ends when the leadscrew is
+//              done (length, limit switch, D)
+//   done       the slip (following error when it stopped), "OK=retract"
+//   retract    back to where the pass began at the rapid rate, a progress
+//              bar; then ready for the next pass, which the leadscrew
+//              re-enters on the same helix (it waits for the index again)
+//   move       a signed distance in mm, then the move with a progress bar
+//   settings   one field per screen (core/ui/settings.h), A to step, D to
+//              edit; C leaves and stores the block (save(): the EEPROM's
+//              update writes only the bytes that changed)
+//   message    a refusal or notice on row 0 ("Cut refused", "Ratio not
+//              exact", ...), the valid range on row 1 for a number out of
+//              range; any key or 1.5 s goes back
+//
+// Lathe interface (L: static functions; a simulated one in
+// tests/host/ui_fake_lathe.h): engage(ratio, reversed, length_steps) ->
+// accepted, and then busy() until the pass ends; synced() (following the
+// spindle, not waiting for the index); busy(); stop_now(); position()
+// (steps); following_error() (steps); rpm(); move_to(steps, rate) ->
+// accepted, and then busy() until it ends; ms() (a free-running millisecond
+// count); save(settings).
+//
+// Numbers: a length or move in mm becomes steps as floor(um x counts per
+// turn / lead) (toward zero for negatives); the carriage position shows as
+// floor(steps x lead / counts) um, both exact in 128 bits (core/lathe/
+// wide.h), so nothing rounds twice.
+//
+// Object: zero-initialised storage is a valid state before start() (no
+// constructor code in the image).
+#pragma once
+#include <stdint.h>
+
+#include "../lathe/ratio.h"
+#include "screen.h"
+#include "settings.h"
+#include "tables.h"
+
+namespace am {
+namespace ui {
+
+// v m / d, the magnitude floored, saturated to +-(2^31 - 1); d > 0.
+__attribute__((noinline)) inline int32_t scale(int32_t v, uint32_t m, uint32_t d) {
+  U128 x = u128(v < 0 ? uint32_t(0) - uint32_t(v) : uint32_t(v)), rem;
+  mul_small(x, m);
+  divmod(x, u128(d), x, rem);
+  const int32_t mag = (!fits32(x) || x.w[0] > 0x7FFFFFFFu) ? 0x7FFFFFFF : int32_t(x.w[0]);
+  return v < 0 ? -mag : mag;
+}
+
+// The settings' machines have whole counts per turn (below 2^21.3) and a
+// lead's denominator of at most 1000 (0.1 TPI), so both products fit 32 bits.
+__attribute__((noinline)) inline int32_t um_to_steps(const Machine& m, int32_t um) {
+  return scale(um, m.leadscrew_counts.num * m.leadscrew.den, m.leadscrew.num);
+}
+
+inline int32_t steps_to_um(const Machine& m, int32_t steps) {
+  return scale(steps, m.leadscrew.num, m.leadscrew.den * m.leadscrew_counts.num);
+}
+
+enum class State : uint8_t { menu, entry, hand, ready, cutting, done, moving, settings, message };
+
+// What a number typed on the entry screen is for (entry_row()'s order).
+enum class Entry : uint8_t { feed, pitch_mm, pitch_tpi, length, move, setting };
+
+inline const FieldSpec& entry_row(Entry e) {
+  static const char kFeed[] AM_FLASH = "Feed mm/rev B:tb";
+  static const char kMm[] AM_FLASH = "Pitch mm A:TPI";
+  static const char kTpi[] AM_FLASH = "Pitch TPI A:mm";
+  static const char kLength[] AM_FLASH = "Length mm 0=run";
+  static const char kMove[] AM_FLASH = "Move mm *:minus";
+  static const FieldSpec kSpecs[] AM_FLASH = {
+      {kFeed, 1, 5000, 3}, {kMm, 10, 50000, 3}, {kTpi, 10, 2000, 1}, {kLength, 0, 200000, 2}, {kMove, -200000, 200000, 2},
+  };
+  return kSpecs[uint8_t(e)];
+}
+
+// The workflow's steps stay out of line: each is called from several places
+// and inlined copies cost the ATmega16 flash it does not have.
+#define AM_UI_OUTLINE __attribute__((noinline))
+
+constexpr uint8_t kEntryChars = 8;      // digits, '.', '-'
+constexpr int32_t kTooLarge = 1000000;  // a typed number saturates here
+constexpr uint16_t kMessageMs = 1500;
+constexpr uint16_t kRefreshMs = 100;
+
+template <class L>
+class Workflow {
+ public:
+  // After the settings block was read from the EEPROM: `loaded` says
+  // whether it was valid (else the defaults are in use, and a message says
+  // so).
+  void start(const Settings& s, bool loaded) {
+    settings_ = s;
+    screen_.clear_sent();
+    go(State::menu);
+    if (!loaded) message(AM_TEXT("Defaults loaded"), State::menu);
+    draw();
+  }
+
+  const Screen& screen() const { return screen_; }
+  Screen& screen() { return screen_; }
+  const Settings& settings() const { return settings_; }
+  State state() const { return state_; }
+
+  // One pass of the main loop: `key` is a new key press or 0.
+  void poll(char key) {
+    const State before = state_;
+    const uint16_t now = L::ms();
+    if (key) on_key(key);
+    else track(now);
+    if (key || state_ != before || uint16_t(now - drawn_ms_) >= kRefreshMs) draw();
+  }
+
+ private:
+  // --- transitions ------------------------------------------------------
+  AM_UI_OUTLINE void go(State s) {
+    state_ = s;
+    entered_ms_ = L::ms();
+  }
+
+  AM_UI_OUTLINE void message(const char* text, State back) {
+    msg_ = text;
+    msg_range_ = false;
+    back_ = back;
+    go(State::message);
+  }
+
+  AM_UI_OUTLINE void begin_entry(Entry e) {
+    entry_ = e;
+    typed_len_ = 0;
+    row_ = 0xFF;  // the table's first row comes next
+    go(State::entry);
+  }
+
+  // The entry's table (feed, metric, inch: the lists' order), one distinct
+  // value on from the last one typed from it; the text becomes that value.
+  AM_UI_OUTLINE void next_row() {
+    const List list = List(entry_);
+    const uint16_t was = row_ < list_size(list) ? table_value(list, row_) : 0;
+    do row_ = uint8_t(row_ + 1 >= list_size(list) ? 0 : row_ + 1);
+    while (table_value(list, row_) == was);
+    // At most 6 characters ("80.0", "6.000", "0.500"): typed_ holds 8.
+    typed_len_ = Screen::format(typed_, table_value(list, row_), entry_ == Entry::pitch_tpi ? 1 : 3);
+  }
+
+  // Time-driven changes: a message times out, a motion ends.
+  AM_UI_OUTLINE void track(uint16_t now) {
+    if (state_ == State::message && uint16_t(now - entered_ms_) >= kMessageMs) go(back_);
+    if (L::busy()) return;
+    if (state_ == State::cutting) {
+      slip_ = L::following_error();
+      go(State::done);
+    } else if (state_ == State::moving) {
+      if (retracting_) ++pass_;
+      go(retracting_ ? State::ready : State::menu);
+    }
+  }
+
+  AM_UI_OUTLINE void on_key(char k) {
+    const bool digit = k >= '0' && k <= '9';
+    switch (state_) {
+      case State::menu:
+        if (k == '1') begin_entry(Entry::pitch_mm);
+        if (k == '2') begin_entry(Entry::feed);
+        if (k == '3') begin_entry(Entry::move);
+        if (k == 'A') {
+          field_ = 0;
+          go(State::settings);
+        }
+        break;
+      case State::entry:
+        if (digit || (k == '#' && !typed_point()) || (k == '*' && entry_ == Entry::move && typed_len_ == 0)) {
+          if (typed_len_ < kEntryChars) typed_[typed_len_++] = k == '#' ? '.' : k == '*' ? '-' : k;
+        } else if (k == 'C') {
+          if (typed_len_ == 0) go(entry_ == Entry::length ? State::hand : entry_ == Entry::setting ? State::settings
+                                                                                           : State::menu);
+          else --typed_len_;
+        } else if (k == 'A' && (entry_ == Entry::pitch_mm || entry_ == Entry::pitch_tpi)) {
+          begin_entry(entry_ == Entry::pitch_mm ? Entry::pitch_tpi : Entry::pitch_mm);
+        } else if (k == 'B' && entry_ <= Entry::pitch_tpi) {
+          next_row();
+        } else if (k == 'D') {
+          int32_t v = 0;
+          if (parse(v)) accept(v);
+        }
+        break;
+      case State::hand:
+        if (k == '1' || k == '2') {
+          left_ = k == '2';
+          begin_entry(Entry::length);
+        }
+        if (k == 'C') go(State::menu);
+        break;
+      case State::ready:
+        if (k == 'D') {
+          pass_start_ = L::position();
+          if (L::engage(ratio_, reversed_, length_steps_)) go(State::cutting);
+          else message(AM_TEXT("Cut refused"), State::ready);
+        }
+        if (k == 'C') go(State::menu);
+        break;
+      case State::cutting:
+      case State::moving:
+        if (k == 'D' || k == 'C') L::stop_now();
+        break;
+      case State::done:
+        if (k == 'D') move(pass_start_, true);
+        if (k == 'C') go(State::menu);
+        break;
+      case State::settings:
+        if (k == 'A') field_ = uint8_t(field_ + 1 == kFieldCount ? 0 : field_ + 1);
+        if (k == 'D') begin_entry(Entry::setting);
+        if (k == 'C') {
+          seal(settings_);
+          L::save(settings_);  // the EEPROM's cells are written only where they differ
+          message(AM_TEXT("Settings saved"), State::menu);
+        }
+        break;
+      case State::message:
+        go(back_);
+        break;
+    }
+  }
+
+  AM_UI_OUTLINE void choose(const Pitch& p) {
+    pitch_ = p;
+    go(State::hand);
+  }
+
+  // A move at the rapid rate to `target`; refused: a message.
+  AM_UI_OUTLINE void move(int32_t target, bool retract) {
+    origin_ = L::position();
+    target_ = target;
+    retracting_ = retract;
+    if (L::move_to(target, settings_.value[kFieldRapid])) go(State::moving);
+    else message(AM_TEXT("Move refused"), retract ? State::done : State::menu);
+  }
+
+  // --- number entry -----------------------------------------------------
+  // Whether a decimal point has been typed ('#' then types no second one).
+  bool typed_point() const {
+    for (uint8_t i = 0; i < typed_len_; ++i)
+      if (typed_[i] == '.') return true;
+    return false;
+  }
+
+  AM_UI_OUTLINE FieldSpec spec() const {
+    return flash_copy(entry_ == Entry::setting ? &field_row(field_) : &entry_row(entry_));
+  }
+
+  // The typed text as value x 10^decimals; false (and a message) if it is
+  // not a number, has too many decimals or is out of range.
+  AM_UI_OUTLINE bool parse(int32_t& out) {
+    const FieldSpec s = spec();
+    int32_t v = 0;
+    uint8_t frac = 0, digits = 0;
+    bool point = false;
+    const bool negative = typed_len_ && typed_[0] == '-';
+    for (uint8_t i = negative; i < typed_len_; ++i) {
+      if (typed_[i] == '.') {
+        point = true;
+        continue;
+      }
+      ++digits;
+      v = v >= kTooLarge ? kTooLarge : v * 10 + (typed_[i] - '0');  // above every range, scaled or not
+      frac = uint8_t(frac + point);
+    }
+    if (!digits) return refuse(AM_TEXT("Type a number"), false);
+    if (frac > s.decimals) return refuse(AM_TEXT("Fewer decimals"), false);
+    for (; frac < s.decimals; ++frac) v *= 10;
+    if (negative) v = -v;
+    if (v < s.min || v > s.max) return refuse(AM_TEXT("Out of range"), true);
+    out = v;
+    return true;
+  }
+
+  AM_UI_OUTLINE bool refuse(const char* why, bool range) {
+    message(why, State::entry);
+    msg_range_ = range;
+    return false;
+  }
+
+  AM_UI_OUTLINE void accept(int32_t v) {
+    const Machine m = machine(settings_);
+    if (entry_ == Entry::feed || entry_ == Entry::pitch_mm) choose(pitch_um(uint32_t(v)));
+    if (entry_ == Entry::pitch_tpi) choose({254000, uint32_t(v)});
+    if (entry_ == Entry::move) move(L::position() + um_to_steps(m, v * 10), false);
+    if (entry_ == Entry::setting) {
+      settings_.value[field_] = uint32_t(v);
+      go(State::settings);
+    }
+    if (entry_ == Entry::length) {
+      length_steps_ = um_to_steps(m, v * 10);
+      const GearRatio g = gear_ratio_exact(m, {pitch_, 1, left_ ? Hand::left : Hand::right});
+      if (g.status != RatioStatus::exact) {
+        message(AM_TEXT("Ratio not exact"), State::menu);
+        return;
+      }
+      ratio_ = g.ratio;
+      reversed_ = g.reversed;
+      pass_ = 1;
+      go(State::ready);
+    }
+  }
+
+  // --- drawing ----------------------------------------------------------
+  // Carriage Z in mm from column 9 of `row`.
+  AM_UI_OUTLINE void z(uint8_t row) { screen_.number(row, 9, steps_to_um(machine(settings_), L::position()) / 10, 7, 2); }
+
+  // "1234rpm Z-123.45" on row 1.
+  void live() {
+    screen_.number(1, 0, L::rpm(), 4, 0);
+    screen_.text(1, 4, AM_TEXT("rpm Z"));
+    z(1);
+  }
+
+  // The distance covered of the current move as a bar on row 1: floor(80
+  // covered / total) columns lit.
+  AM_UI_OUTLINE void progress() {
+    int32_t total = target_ - origin_, covered = L::position() - origin_;
+    if (total < 0) total = -total, covered = -covered;
+    const int32_t lit = total ? scale(covered, kBarSteps, uint32_t(total)) : kBarSteps;
+    screen_.bar(1, lit < 0 ? 0 : lit > kBarSteps ? kBarSteps : uint8_t(lit));
+  }
+
+  AM_UI_OUTLINE void draw() {
+    drawn_ms_ = L::ms();
+    Screen& s = screen_;
+    switch (state_) {
+      case State::menu:
+        s.line(0, AM_TEXT("1Thr 2Feed 3Move"));
+        live();
+        break;
+      case State::entry: {
+        s.line(0, spec().label);
+        for (uint8_t i = 0; i < kCols; ++i) s.put(1, i, i < typed_len_ ? typed_[i] : i == typed_len_ ? '_' : ' ');
+        break;
+      }
+      case State::hand:
+        s.line(0, AM_TEXT("Hand"));
+        s.line(1, AM_TEXT("1Right 2Left"));
+        break;
+      case State::ready:
+        s.line(0, AM_TEXT("OK to cut pass"));
+        s.number(0, 14, pass_, 2, 0);
+        live();
+        break;
+      case State::cutting:
+        if (L::synced()) {
+          s.text(0, 0, AM_TEXT("Cut  err"));
+          s.number(0, 8, L::following_error(), 8, 0);
+        } else {
+          s.line(0, AM_TEXT("Wait index"));
+        }
+        live();
+        break;
+      case State::done:
+        s.text(0, 0, AM_TEXT("Done slip"));
+        s.number(0, 9, slip_, 7, 0);
+        s.line(1, AM_TEXT("OK=retract C=end"));
+        break;
+      case State::moving:
+        s.text(0, 0, retracting_ ? AM_TEXT("Retract Z") : AM_TEXT("Move    Z"));
+        z(0);
+        progress();
+        break;
+      case State::settings: {
+        const FieldSpec f = field(field_);
+        s.line(0, f.label);
+        s.blank(1, s.number(1, 0, int32_t(settings_.value[field_]), 0, f.decimals), 13);
+        s.number(1, 13, field_ + 1, 1, 0);
+        s.put(1, 14, '/');
+        s.number(1, 15, kFieldCount, 1, 0);
+        break;
+      }
+      case State::message:
+        s.line(0, msg_);
+        if (msg_range_) {
+          const FieldSpec sp = spec();
+          s.blank(1, s.number(1, s.text(1, s.number(1, 0, sp.min, 0, sp.decimals), AM_TEXT("..")), sp.max, 0,
+                              sp.decimals));
+        } else {
+          s.blank(1, 0);
+        }
+        break;
+    }
+  }
+
+  Screen screen_;
+  Settings settings_;
+  State state_;
+  State back_;
+  Entry entry_;
+  uint8_t row_;  // the table row typed last, 0xFF for none
+  uint8_t field_;
+  bool left_;
+  bool retracting_;
+  bool msg_range_;
+  uint8_t typed_len_;
+  char typed_[kEntryChars];
+  uint16_t pass_;
+  uint16_t entered_ms_;
+  uint16_t drawn_ms_;
+  const char* msg_;
+  Pitch pitch_;
+  Ratio ratio_;
+  bool reversed_;
+  int32_t length_steps_;
+  int32_t pass_start_;  // where the pass began: the retract's target
+  int32_t origin_;      // where the current move began
+  int32_t target_;      // and where it ends
+  int32_t slip_;
+};
+
+}  // namespace ui
+}  // namespace am

@@ -1,0 +1,435 @@
+// The leadscrew's interrupts and its speed control (contract: leadscrew.h).
+//
+// Who writes what: the spindle vectors (INT1, INT0) run the follower and,
+// once locked, step; the pace vector (Timer1 compare A, CTC at F_CPU / 8)
+// steps moves and the catch-up at the period poll() sets; the main loop
+// starts and ends passes and moves with interrupts off. Vectors do not nest,
+// so each one sees the others' work whole.
+//
+// Speed over size for the counts' path only (kFast: -O2): the vectors, with
+// the decoder and the step's rise inlined, and the functions they call per
+// count (the follower's update, the pulse's end, the unlocked count); the
+// rest of the file stays at the image's -Os. The update is called, not
+// inlined: inlined, every vector pushed 29 registers before its step;
+// called, 16 (docs/lathe.md, "Still missing", has what a count costs).
+#include "leadscrew.h"
+
+#include <avr/interrupt.h>
+#include <util/atomic.h>
+
+#include "../../../core/math/isqrt.h"
+#include "../../../hal/avr/step_timer.h"
+#include "../../board.h"
+#include "../../devices/spindle_encoder.h"
+#include "../../engine/clock.h"
+
+#define kFast __attribute__((optimize("O2")))
+#define kInline __attribute__((always_inline)) inline
+
+namespace leadscrew {
+namespace {
+
+using Step = board::LeadStep;
+using Dir = board::LeadDir;
+
+am::Follower follower;
+volatile State state_;
+volatile Stop stop_;
+int32_t pos_;        // the carriage, steps
+int32_t base_;       // the pass's base: target = base_ + follower.position()
+int32_t end_;        // the pass ends here (has_end_), in direction end_up_
+bool has_end_, end_up_;
+bool reversed_;      // the pass's: positive steps for a backward spindle
+bool dir_up_;        // the direction pin's level: true = +Z
+bool index_was_high_;
+// Locked: the steps the next count asks for if it comes in direction
+// ahead_forward_ (the last count's).
+int8_t ahead_;
+bool ahead_forward_;
+uint16_t counts_per_turn_ = board::kSpindleLines;
+
+// The pace: steps of the direction pace_dir_ (0: none) every pace_period_
+// ticks of F_CPU / 8.
+volatile int8_t pace_dir_;
+volatile uint16_t pace_period_;
+int32_t move_target_;
+uint32_t move_rate_;
+
+// The main loop's speed control.
+int32_t velocity_;   // steps/s, signed: the pace's
+uint32_t next_tick_;
+constexpr uint8_t kTargetSamples = 8, kRpmSamples = 8;
+constexpr uint8_t kTargetEvery = 4, kRpmEvery = 64;  // ms between samples
+int32_t target_ring_[kTargetSamples];  // the target, every 4 ms (its speed over 32 ms)
+int32_t count_ring_[kRpmSamples];      // the spindle count, every 64 ms (rpm over 512 ms)
+int32_t target_speed_;                 // steps/s, from target_ring_
+uint16_t tick_;                        // ms; 2^16 is a multiple of both rings' cycles
+int16_t rpm_;
+
+constexpr uint32_t kPaceHz = F_CPU / 8;
+constexpr uint32_t kMinPaceRate = kPaceHz / 65535 + 1;  // 31 steps/s at 16 MHz
+constexpr uint32_t kAccelPerTick = board::kLeadscrewAccel / 1000;
+
+inline void pace_off() {
+  pace_dir_ = 0;
+  hal::step_timer::stop();
+}
+
+// One step now, with the driver's timing: the direction set up first when
+// it changes (kDirSetupCycles), the pulse's end left to the caller.
+kInline void step_begin(bool up) {
+  if (up != dir_up_) {
+    Dir::set(up);
+    dir_up_ = up;
+    __builtin_avr_delay_cycles(board::kDirSetupCycles);
+  }
+  Step::high();
+}
+
+__attribute__((noinline)) void halt(Stop why) {
+  state_ = State::idle;
+  stop_ = why;
+  pace_off();
+}
+
+// The steps after the first of one count (|n| - 1 of them), each a full
+// pulse kStepLowCycles after the one before; none beyond the pass's end.
+__attribute__((noinline)) kFast void burst(int8_t n) {
+  const bool up = n > 0;
+  for (uint8_t k = uint8_t(up ? n : -n) - 1; k != 0; --k) {
+    if (has_end_ && pos_ == end_) return;
+    __builtin_avr_delay_cycles(board::kStepLowCycles);
+    Step::high();
+    __builtin_avr_delay_cycles(board::kStepHighCycles);
+    Step::low();
+    pos_ += up ? 1 : -1;
+  }
+}
+
+// A locked count's bookkeeping: the follower's update and what the next
+// count in the same direction asks for.
+__attribute__((noinline)) kFast void locked_update(bool forward) {
+  spindle_encoder::count = spindle_encoder::count + (forward ? 1 : -1);
+  follower.edge(forward);
+  ahead_ = int8_t(follower.next_delta(forward));
+}
+
+// After a locked count's first step: the pulse ends, the others follow,
+// then the limit switch and the pass's end.
+__attribute__((noinline)) kFast void after_step(int8_t n) {
+  Step::low();
+  pos_ += n > 0 ? 1 : -1;
+  if (n > 1 || n < -1) burst(n);
+  if (!board::LimitSwitch::read()) halt(Stop::limit);
+  else if (has_end_ && pos_ == end_) halt(Stop::length);
+}
+
+// A locked count against the direction of the one before (the spindle
+// reversed): the update first, then its steps, so its latency is longer.
+__attribute__((noinline)) void reversed_count(bool forward) {
+  const int8_t n = int8_t(follower.next_delta(forward));
+  ahead_forward_ = forward;
+  if (n != 0) step_begin(n > 0);
+  __builtin_avr_delay_cycles(board::kStepHighCycles);
+  locked_update(forward);
+  if (n != 0) after_step(n);
+}
+
+// A count while not locked: the spindle's count, the follower's while
+// catching up, the index while armed.
+__attribute__((noinline)) kFast void unlocked_count(int8_t d) {
+  spindle_encoder::count = spindle_encoder::count + d;
+  if (state_ == State::catching) {
+    follower.edge(d > 0);
+  } else if (state_ == State::armed) {
+    const bool high = board::SpindleIndex::read();
+    if (high && !index_was_high_) state_ = State::catching;
+    index_was_high_ = high;
+  }
+}
+
+// One spindle count, d = +1 forward or -1 backward. Locked: the count's
+// first step rises before any bookkeeping (ahead_ says what it is), and
+// locked_update() runs while the pulse is high: it takes longer than
+// kStepHighCycles (every pulse's width is measured by
+// tests/sim/test_lathe_timing.cpp).
+kInline void on_count(int8_t d) {
+  if (state_ != State::locked) return unlocked_count(d);
+  const bool forward = d > 0;
+  if (forward != ahead_forward_) return reversed_count(forward);
+  const int8_t n = ahead_;
+  if (n != 0) step_begin(n > 0);
+  locked_update(forward);
+  if (n != 0) after_step(n);
+}
+
+}  // namespace
+}  // namespace leadscrew
+
+ISR(INT1_vect) kFast;
+ISR(INT1_vect) {
+  const int8_t d = spindle_encoder::on_a();
+  if (d) leadscrew::on_count(d);
+}
+
+ISR(INT0_vect) kFast;
+ISR(INT0_vect) {
+  const int8_t d = spindle_encoder::on_b();
+  if (d) leadscrew::on_count(d);
+}
+
+// The pace: one step of a move or of the catch-up.
+ISR(TIMER1_COMPA_vect) kFast;
+ISR(TIMER1_COMPA_vect) {
+  using namespace leadscrew;
+  OCR1A = pace_period_;
+  const int8_t d = pace_dir_;
+  if (d == 0) return;
+  if (!board::LimitSwitch::read()) {
+    halt(Stop::limit);
+    return;
+  }
+  step_begin(d > 0);
+  __builtin_avr_delay_cycles(board::kStepHighCycles);
+  Step::low();
+  pos_ += d;
+  if (state_ == State::catching) {
+    if (pos_ == base_ + follower.position()) {
+      ahead_forward_ = d > 0 ? !reversed_ : reversed_;
+      ahead_ = int8_t(follower.next_delta(ahead_forward_));
+      state_ = State::locked;
+      pace_off();
+    } else if (has_end_ && pos_ == end_) {
+      halt(Stop::length);
+    }
+  } else if (pos_ == move_target_) {
+    halt(stop_ == Stop::none ? Stop::done : stop_);  // a disengage() keeps its reason
+  }
+}
+
+namespace leadscrew {
+namespace {
+
+// Speed to close a gap of e steps with the board's deceleration: sqrt(2 a |e|),
+// at most kLeadscrewMaxRate.
+uint32_t closing_speed(int32_t e) {
+  const uint32_t gap = uint32_t(e < 0 ? -e : e);
+  constexpr uint32_t kMaxGap = 0xFFFFFFFFul / (2 * board::kLeadscrewAccel);
+  if (gap > kMaxGap) return board::kLeadscrewMaxRate;
+  const uint32_t v = am::isqrt32(2 * board::kLeadscrewAccel * gap);
+  return v < board::kLeadscrewMaxRate ? v : board::kLeadscrewMaxRate;
+}
+
+int32_t clamp(int32_t v, int32_t limit) { return v > limit ? limit : v < -limit ? -limit : v; }
+
+// Moves the pace's speed towards `goal` by at most the acceleration of one
+// millisecond and sets the pace from it.
+void steer(int32_t goal) {
+  velocity_ += clamp(goal - velocity_, int32_t(kAccelPerTick));
+  const uint32_t speed = uint32_t(velocity_ < 0 ? -velocity_ : velocity_);
+  if (speed < kMinPaceRate) {
+    pace_dir_ = 0;
+    return;
+  }
+  const uint16_t period = uint16_t(kPaceHz / speed - 1);
+  const int8_t dir = velocity_ > 0 ? 1 : -1;
+  ATOMIC_BLOCK(ATOMIC_RESTORESTATE) {
+    pace_period_ = period;
+    if (pace_dir_ == 0 && (state_ == State::moving || state_ == State::catching)) {
+      pace_dir_ = dir;
+      hal::step_timer::start_div8(period);
+    }
+    pace_dir_ = dir;
+  }
+}
+
+int32_t target_now() {
+  int32_t t;
+  ATOMIC_BLOCK(ATOMIC_RESTORESTATE) { t = base_ + follower.position(); }
+  return t;
+}
+
+// One millisecond of speed control.
+// Decelerates a paced move or catch-up to rest as soon as the acceleration
+// allows (v^2 / 2a further on), ending with `why`. Interrupts off.
+void brake(Stop why) {
+  const int32_t v = velocity_ < 0 ? -velocity_ : velocity_;
+  const int32_t braking = int32_t(uint32_t(v) * uint32_t(v) / (2 * board::kLeadscrewAccel));
+  move_target_ = pos_ + (velocity_ > 0 ? braking + 1 : -braking - 1);
+  move_rate_ = uint32_t(v);
+  state_ = State::moving;
+  stop_ = why;
+}
+
+void control_tick() {
+  const uint16_t tick = tick_++;
+  const int32_t count = spindle_count();
+  if (tick % kRpmEvery == 0) {
+    const uint8_t at = uint8_t(tick / kRpmEvery) % kRpmSamples;
+    // counts in 512 ms -> rpm: x 60000 / (512 C)
+    rpm_ = int16_t(int32_t(count - count_ring_[at]) * 1875 / (16 * int32_t(counts_per_turn_)));
+    count_ring_[at] = count;
+  }
+  const State s = state_;
+  if (s == State::catching) {
+    const int32_t target = target_now();
+    if (tick % kTargetEvery == 0) {
+      const uint8_t at = uint8_t(tick / kTargetEvery) % kTargetSamples;
+      target_speed_ = (target - target_ring_[at]) * 125 / 4;  // steps in 32 ms -> steps/s
+      target_ring_[at] = target;
+    }
+    const int32_t target_speed = target_speed_;
+    const int32_t e = target - position();
+    if (target_speed > int32_t(board::kLeadscrewMaxRate) || target_speed < -int32_t(board::kLeadscrewMaxRate)) {
+      // The carriage could never catch up: it stops, unlocked.
+      ATOMIC_BLOCK(ATOMIC_RESTORESTATE) {
+        if (state_ == State::catching) brake(Stop::overspeed);
+      }
+      return;
+    }
+    int32_t goal = 0;
+    if (e != 0 && (target_speed == 0 || (e > 0) == (target_speed > 0))) {
+      const int32_t closing = int32_t(closing_speed(e));
+      goal = target_speed + (e > 0 ? closing : -closing);
+    }
+    steer(clamp(goal, board::kLeadscrewMaxRate));
+  } else if (s == State::moving) {
+    const int32_t e = move_target_ - position();
+    const int32_t closing = int32_t(closing_speed(e));
+    const int32_t limit = int32_t(move_rate_);
+    steer(clamp(e > 0 ? closing : -closing, limit));
+  } else {
+    velocity_ = 0;
+  }
+}
+
+void start_pace_clock() {
+  velocity_ = 0;
+  pace_dir_ = 0;
+  pace_period_ = 0xFFFF;
+  hal::step_timer::start_div8(0xFFFF);
+}
+
+}  // namespace
+
+void init() {
+  hal::step_timer::init();
+  set_encoder(board::kSpindleQuadrature, board::kSpindleLines);
+  dir_up_ = false;
+  next_tick_ = clock::now();
+}
+
+void poll() {
+  if (!board::LimitSwitch::read() && state_ != State::idle) {
+    ATOMIC_BLOCK(ATOMIC_RESTORESTATE) {
+      if (state_ != State::idle) halt(Stop::limit);
+    }
+  }
+  while (clock::due(next_tick_, clock::ms(1))) control_tick();
+}
+
+Refusal engage(const am::Ratio& ratio, bool reversed, int32_t length_steps, uint8_t start, uint8_t starts) {
+  if (state_ != State::idle) return Refusal::busy;
+  if (starts == 0 || start >= starts) return Refusal::bad_start;
+  if (length_steps < 0) return Refusal::bad_length;
+  if (ratio.den == 0 || ratio.num / ratio.den >= board::kMaxStepsPerCount) return Refusal::too_steep;
+  if (!board::LimitSwitch::read()) return Refusal::limit;
+  if (!follower.reset(ratio, reversed, am::start_phase(start, starts, counts_per_turn_))) return Refusal::phase_range;
+  ATOMIC_BLOCK(ATOMIC_RESTORESTATE) {
+    base_ = pos_;
+    reversed_ = reversed;
+    end_up_ = !reversed;
+    end_ = reversed ? pos_ - length_steps : pos_ + length_steps;
+    has_end_ = length_steps != 0;
+    index_was_high_ = true;  // the index must be seen low at a count, then high
+    stop_ = Stop::none;
+    const int32_t t = base_ + follower.position();
+    for (uint8_t i = 0; i < kTargetSamples; ++i) target_ring_[i] = t;
+    target_speed_ = 0;
+    start_pace_clock();
+    state_ = State::armed;
+  }
+  return Refusal::none;
+}
+
+Refusal move_to(int32_t steps, uint32_t rate) {
+  if (state_ != State::idle) return Refusal::busy;
+  if (rate == 0) return Refusal::bad_rate;
+  if (!board::LimitSwitch::read()) return Refusal::limit;
+  ATOMIC_BLOCK(ATOMIC_RESTORESTATE) {
+    stop_ = Stop::none;
+    if (steps == pos_) {
+      stop_ = Stop::done;
+      return Refusal::none;
+    }
+    move_target_ = steps;
+    move_rate_ = rate < board::kLeadscrewMaxRate ? rate : board::kLeadscrewMaxRate;
+    start_pace_clock();
+    state_ = State::moving;
+  }
+  return Refusal::none;
+}
+
+void disengage() {
+  ATOMIC_BLOCK(ATOMIC_RESTORESTATE) {
+    const State s = state_;
+    if (s == State::locked || s == State::armed || velocity_ == 0) {
+      if (s != State::idle) halt(Stop::stopped);
+    } else {
+      brake(Stop::stopped);
+    }
+  }
+}
+
+void stop_now() {
+  ATOMIC_BLOCK(ATOMIC_RESTORESTATE) { halt(Stop::stopped); }
+}
+
+bool busy() { return state_ != State::idle; }
+State state() { return state_; }
+Stop last_stop() { return stop_; }
+
+int32_t position() {
+  int32_t p;
+  ATOMIC_BLOCK(ATOMIC_RESTORESTATE) { p = pos_; }
+  return p;
+}
+
+int32_t following_error() {
+  const State s = state_;
+  if (s != State::catching && s != State::locked) return 0;
+  int32_t e;
+  ATOMIC_BLOCK(ATOMIC_RESTORESTATE) { e = base_ + follower.position() - pos_; }
+  return e;
+}
+
+int16_t spindle_rpm() { return rpm_; }
+
+int32_t spindle_count() {
+  int32_t c;
+  ATOMIC_BLOCK(ATOMIC_RESTORESTATE) { c = spindle_encoder::count; }
+  return c;
+}
+
+uint16_t lost_counts() {
+  uint16_t n;
+  ATOMIC_BLOCK(ATOMIC_RESTORESTATE) { n = spindle_encoder::lost; }
+  return n;
+}
+
+bool set_encoder(bool quadrature, uint16_t lines) {
+  if (state_ != State::idle || lines == 0) return false;
+  const spindle_encoder::Mode m = quadrature ? spindle_encoder::Mode::quadrature : spindle_encoder::Mode::single;
+  const uint32_t counts = uint32_t(lines) * spindle_encoder::counts_per_line(m);
+  if (counts > 0xFFFF) return false;
+  counts_per_turn_ = uint16_t(counts);
+  spindle_encoder::init(m);
+  for (uint8_t i = 0; i < kRpmSamples; ++i) count_ring_[i] = spindle_count();
+  return true;
+}
+
+am::Machine machine() {
+  return am::Machine{board::kLeadscrewPitch, board::kLeadscrewCounts, counts_per_turn_, board::kLeadscrewReversed};
+}
+
+}  // namespace leadscrew

@@ -1,0 +1,72 @@
+// The m16-lathe image with a simulated spindle, for the lathe tests: lines
+// go out as a sender's (relay mode: no WAIT of the host's own between them),
+// one at a time, each run until its answer.
+#pragma once
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+
+#include "lathe_check.h"
+#include "sim_fixture.h"
+#include "spindle_encoder.h"
+
+namespace simtest {
+
+struct LatheRig {
+  explicit LatheRig(const sim::SpindleParams& p)
+      : m(new sim::Machine(image("m16-lathe"))), step(&m->watch_pin('C', 0)), dir(&m->watch_pin('C', 1)) {
+    m->serial().relay_only();
+    spindle.reset(new sim::SpindleEncoder(*m, p));
+    m->run([this] { return m->serial().banner_seen(); }, m->f_cpu());
+  }
+
+  // Sends `line`, runs until it is answered; returns the answer ("" if the
+  // budget ran out).
+  std::string send(const std::string& line, double budget_s = 1) {
+    const size_t k = m->serial().responses().size();
+    m->serial().relay(line.data(), line.size());
+    m->serial().relay("\n", 1);
+    m->run([this, k] { return m->serial().responses().size() > k && !m->serial().responses()[k].answer.empty(); },
+           uint64_t(budget_s * m->f_cpu()));
+    if (m->serial().responses().size() <= k) return "";
+    last = m->serial().responses()[k];
+    return last.answer;
+  }
+
+  // The status line ("state=... z=..."), "" if none came.
+  std::string status() {
+    if (send("?") != "ok") return "";
+    const auto& r = m->serial().received();
+    return r.size() >= 2 ? r[r.size() - 2] : "";
+  }
+
+  void run_for(double s) {
+    m->run([] { return false; }, uint64_t(s * m->f_cpu()));
+  }
+  // Runs until the leadscrew is idle (WAIT), at most budget_s.
+  bool wait_idle(double budget_s) { return send("WAIT", budget_s) == "ok"; }
+
+  // The cycle a pass's line was received whole: it was armed after it.
+  uint64_t armed_after() const { return last.sent_cycle; }
+
+  const sim::AxisTrace& z() const { return *m->axis('Z'); }
+
+  std::unique_ptr<sim::Machine> m;
+  std::unique_ptr<sim::SpindleEncoder> spindle;
+  const std::vector<sim::PinEdge>* step;
+  const std::vector<sim::PinEdge>* dir;
+  sim::Response last;
+};
+
+// A status line's field ("z", "err", "state", ...), "" when absent.
+inline std::string field(const std::string& status, const std::string& key) {
+  const std::string k = key + "=";
+  size_t at = status.find(" " + k);
+  at = at == std::string::npos ? (status.rfind(k, 0) == 0 ? 0 : std::string::npos) : at + 1;
+  if (at == std::string::npos) return "";
+  const size_t from = at + k.size(), to = status.find(' ', from);
+  return status.substr(from, to == std::string::npos ? std::string::npos : to - from);
+}
+
+}  // namespace simtest
