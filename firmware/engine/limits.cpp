@@ -14,7 +14,7 @@ uint8_t homed_switches;
 
 }  // namespace
 
-bool alarm() { return kSwitches && alarmed; }
+bool alarm() { return alarmed; }
 
 void unlock() { alarmed = false; }
 

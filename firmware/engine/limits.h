@@ -10,7 +10,8 @@
 //   limit: alarm() from then on, every axis unhomed (the motion queued
 //   behind the stop never ran, so the position is lost) and news() true
 //   once, for the program to say so. fail() raises the same alarm without a
-//   trip (a homing that failed). While alarm() holds, planner::check()
+//   trip (a homing that failed, a soft reset in motion: any board, with
+//   endstops or not). While alarm() holds, planner::check()
 //   refuses every move (Refusal::alarm); unlock() ends it (M999, grbl's $X)
 //   and leaves the axes unhomed.
 //   set_homed(k) marks switch k's axis homed (the homing service has put

@@ -64,7 +64,7 @@ Refusal check(const Move& move) {
 const char* refusal_text(Refusal r) {
   return r == Refusal::position_range         ? PSTR("move would leave the position range")
          : r == Refusal::timer_axis_not_alone ? PSTR("the hardware-timed axis moves alone")
-         : r == Refusal::alarm                ? PSTR("alarm (hard limit or homing failed): M999 unlocks")
+         : r == Refusal::alarm                ? PSTR("alarm (hard limit, failed homing, reset in motion): M999 or $X unlocks")
                                               : PSTR("move beyond the soft limits");
 }
 

@@ -192,9 +192,9 @@ TEST(Homing, ASwitchThatNeverClosesRaisesTheAlarm) {
   EXPECT_EQ(p.answer(0), "error: homing: endstop not found");
   // The whole seek, then the error.
   EXPECT_EQ(position_at(*p.m().axis('X'), p.m().serial().responses().at(0).answer_cycle), -9000);
-  EXPECT_EQ(p.answer(1), "error: alarm (hard limit or homing failed): M999 unlocks");
-  EXPECT_EQ(p.answer(2), "error: alarm (hard limit or homing failed): M999 unlocks");
-  EXPECT_EQ(p.answer(3), "error: alarm (hard limit or homing failed): M999 unlocks");
+  EXPECT_EQ(p.answer(1), "error: alarm (hard limit, failed homing, reset in motion): M999 or $X unlocks");
+  EXPECT_EQ(p.answer(2), "error: alarm (hard limit, failed homing, reset in motion): M999 or $X unlocks");
+  EXPECT_EQ(p.answer(3), "error: alarm (hard limit, failed homing, reset in motion): M999 or $X unlocks");
   EXPECT_EQ(p.answer(4), "ok");
   // Unhomed: no soft limits. The seek ran whole, so the planner still
   // counts what the pins did, and X-1 is reached from there.

@@ -24,7 +24,7 @@ namespace {
 // An answer as "ok" or "error: <reason>" (grbl's number aside).
 std::string said(const sim::Response& r) { return sim::SerialHost::is_ok(r.answer) ? r.answer : "error: " + r.reason; }
 
-constexpr const char* kAlarmRefusal = "error: alarm (hard limit or homing failed): M999 unlocks";
+constexpr const char* kAlarmRefusal = "error: alarm (hard limit, failed homing, reset in motion): M999 or $X unlocks";
 constexpr const char* kAlarmLine = "ALARM: hard limit: endstop hit, axes stopped, position lost; M999 unlocks";
 
 uint64_t last_step(const sim::Machine& m) {

@@ -36,6 +36,21 @@ std::string status_after(sim::Machine& m, size_t seen) {
   return "";
 }
 
+// Sends `line` raw and returns the first answer line after it ("ok" or
+// "error:N"; "" if none came within a second).
+std::string answer_to(sim::Machine& m, const std::string& line) {
+  const size_t seen = m.serial().received().size();
+  m.serial().send_raw(line + "\n");
+  auto answer = [&]() -> std::string {
+    const auto& r = m.serial().received();
+    for (size_t i = seen; i < r.size(); ++i)
+      if (r[i] == "ok" || r[i].rfind("error:", 0) == 0) return r[i];
+    return "";
+  };
+  m.run([&] { return !answer().empty(); }, uint64_t(kTick));
+  return answer();
+}
+
 // MPos's first number, in steps (1000 per mm).
 long mpos_x_steps(const std::string& status) {
   const size_t at = status.find("MPos:");
@@ -148,6 +163,41 @@ TEST(Realtime, CtrlXStopsTheStepsAtOnceAndRestarts) {
     printf("Realtime: Ctrl-X: last %c step %lld cycles after the byte was in; banner again after %.1f ms\n", a,
            (long long)(st.back()) - (long long)in, (m.serial().received_cycles().back() - in) / kTick * 1000);
   }
+  // The position is lost: after the banner's second line, grbl's alarm;
+  // motion is refused until $X. (The host's M400 in flight at the reset
+  // is never answered: the lines go raw.)
+  const size_t seen = m.serial().received().size();
+  m.run([&] { return m.serial().received().size() >= seen + 3; }, uint64_t(0.1 * kTick));
+  const auto& got = m.serial().received();
+  ASSERT_GE(got.size(), seen + 3);
+  EXPECT_EQ(got[seen], got[1]);  // [MSG:avrmotion ...]
+  EXPECT_EQ(got[seen + 1], "ALARM:3");
+  EXPECT_EQ(got[seen + 2], "[MSG:'$X' to unlock]");
+  const double x = m.axis('X')->steps();
+  const size_t before_status = m.serial().received().size();
+  m.serial().send_raw("?");
+  EXPECT_EQ(status_after(m, before_status).rfind("<Alarm|MPos:", 0), 0u);
+  EXPECT_EQ(answer_to(m, "G1 X30 F1200"), "error:9");
+  EXPECT_EQ(answer_to(m, "$X"), "ok");
+  EXPECT_EQ(answer_to(m, "G91"), "ok");
+  EXPECT_EQ(answer_to(m, "G1 X1 F1200"), "ok");
+  EXPECT_EQ(answer_to(m, "M400"), "ok");
+  EXPECT_EQ(m.axis('X')->steps(), x + 1000);  // only the move after $X
+}
+
+TEST(Realtime, CtrlXAtRestRestartsWithoutAnAlarm) {
+  sim::Machine m(simtest::image("m32-cnc"));
+  ASSERT_EQ(m.run([&] { return m.serial().banner_seen(); }, uint64_t(kTick)), sim::RunEnd::done);
+  const size_t banner = m.serial().received().size();
+  m.serial().send_raw("\x18");
+  m.run([&] { return m.serial().received().size() >= banner + 2; }, uint64_t(0.1 * kTick));
+  m.run([&] { return false; }, uint64_t(0.01 * kTick));  // anything after the banner would come now
+  const auto& got = m.serial().received();
+  ASSERT_EQ(got.size(), banner + 2);  // the two banner lines again, nothing else
+  EXPECT_EQ(got[banner], got[0]);
+  EXPECT_EQ(answer_to(m, "G1 X1 F1200"), "ok");
+  EXPECT_EQ(answer_to(m, "M400"), "ok");
+  EXPECT_EQ(m.axis('X')->steps(), 1000);
 }
 
 }  // namespace

@@ -15,7 +15,7 @@
 #include "../../services/homing.h"
 
 int main() {
-  if (board::kRealtime) hal::watchdog::after_reset();  // a soft reset's watchdog off
+  const bool soft_reset = board::kRealtime && hal::watchdog::after_reset();  // its watchdog off
   hal_disable_jtag();
   board::init();
   engine::init();
@@ -24,6 +24,7 @@ int main() {
   hal::uart::init(F_CPU, board::kBaud);
   sei();
   protocol::banner();
+  if (board::kRealtime) realtime::boot(soft_reset);
   for (;;) {
     protocol::poll();
     if (board::kRealtime) realtime::poll();

@@ -10,6 +10,7 @@
 #include "../../board.h"
 #include "../../axes/axis_modes.h"
 #include "../../engine/clock.h"
+#include "../../engine/limits.h"
 #include "../../engine/path.h"
 #include "../../engine/planner.h"
 #include "../../services/heater.h"
@@ -301,9 +302,11 @@ bool marlin_code(char* p) {
 
 const char kNotHere[] PROGMEM = "not in this image";
 
-// grbl's '$' lines: `$` help, `$I` build info, `$G` the parser state; the
-// settings, homing and unlock commands (and realtime bytes sent as a line)
-// are refused with grbl's "not recognized or supported" until they exist.
+// grbl's '$' lines: `$` help, `$I` build info, `$G` the parser state, `$X`
+// unlock (the alarm of a hard limit, a failed homing or a soft reset in
+// motion: docs/realtime.md); the settings and homing commands (and realtime
+// bytes sent as a line) are refused with grbl's "not recognized or
+// supported" until they exist.
 bool grbl_system(char* p) {
   p = skip_blanks(p);
   const char c = *p;
@@ -314,10 +317,13 @@ bool grbl_system(char* p) {
   if (c != '$') return false;
   const char what = char(p[1] & ~0x20);
   if (p[1] == '\0') {
-    hal::uart::write_P(PSTR("[HLP:$ $I $G]\n"));
-  } else if (p[2] != '\0' || !(what == 'I' || (board::kGcode && what == 'G'))) {
+    hal::uart::write_P(PSTR("[HLP:$ $I $G $X]\n"));
+  } else if (p[2] != '\0' || !(what == 'I' || what == 'X' || (board::kGcode && what == 'G'))) {
     error(code::bad_system_command, kNotHere);
     return true;
+  } else if (what == 'X') {
+    limits::unlock();
+    reply::info_P(PSTR("Caution: Unlocked"));
   } else if (what == 'I') {
     hal::uart::write_P(PSTR("[VER:1.1h.avrmotion-" AVRMOTION_VERSION ":" AVRMOTION_BOARD_NAME "]\n[OPT:,"));
     hal::uart::write_u32(board::kPathBlocks);

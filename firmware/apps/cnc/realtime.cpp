@@ -7,14 +7,23 @@
 #include "../../../hal/avr/uart.h"
 #include "../../../hal/avr/watchdog.h"
 #include "../../board.h"
+#include "../../engine/limits.h"
 #include "../../engine/path.h"
 #include "../../engine/planner.h"
+#include "../../engine/step_engine.h"
 #include "gcode.h"
+#include "reply.h"
 
 namespace realtime {
 namespace {
 
 constexpr uint8_t kStatus = 1, kHold = 2, kResume = 4;
+volatile uint8_t asked;
+
+// Set by a soft reset that stopped steps, read after the restart: RAM the
+// startup code does not clear.
+constexpr uint8_t kMotionLost = 0xA5;
+uint8_t reset_in_motion __attribute__((section(".noinit")));
 
 // Whether every axis counts in micrometres (a step/dir axis of 1 um per
 // step): the report then prints the count as it is.
@@ -29,13 +38,12 @@ struct InMicrometres<AxisSet<A...>> {
   }
   static constexpr bool value = all((uint64_t(A::descriptor().steps_per_m) * OwnUnits<A>::per_full_step == 1000000u)...);
 };
-volatile uint8_t asked;
 
 void write_state() {
   switch (path::hold_state()) {
     case path::Hold::stopping: hal::uart::write_P(PSTR("Hold:1")); return;
     case path::Hold::held: hal::uart::write_P(PSTR("Hold:0")); return;
-    default: hal::uart::write_P(path::busy() ? PSTR("Run") : PSTR("Idle")); return;
+    default: hal::uart::write_P(limits::alarm() ? PSTR("Alarm") : path::busy() ? PSTR("Run") : PSTR("Idle")); return;
   }
 }
 
@@ -61,6 +69,15 @@ void write_state() {
 }
 
 }  // namespace
+
+void boot(bool by_watchdog) {
+  if (by_watchdog && reset_in_motion == kMotionLost) {
+    limits::fail();
+    hal::uart::write_P(PSTR("ALARM:3\n"));
+    reply::info_P(PSTR("'$X' to unlock"));
+  }
+  reset_in_motion = 0;
+}
 
 void poll() {
   uint8_t got;
@@ -88,6 +105,7 @@ bool hal::uart::take_realtime(uint8_t c) {
     case 0x18:
       cli();
       hal::step_timer::halt();
+      if (engine::busy()) reset_in_motion = kMotionLost;
       hal::watchdog::reset();
     default: return false;
   }
