@@ -101,7 +101,7 @@ Result run(uint8_t axes) {
 
 void poll() {
   if (limits::news())
-    reply::alarm(PSTR("hard limit: endstop hit, axes stopped, position lost; M999 unlocks"));
+    reply::alarm(1, PSTR("hard limit: endstop hit, axes stopped, position lost"));
 }
 
 }  // namespace homing

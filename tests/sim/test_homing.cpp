@@ -151,6 +151,23 @@ TEST(Homing, ThePrinterHomesInGcode) {
   for (char a : {'X', 'Y', 'Z'}) EXPECT_EQ(m.axis(a)->position, -2000) << a;  // 1 mm off the switch
 }
 
+// grbl's $H on the m32-direct: G28 for every axis with an endstop, answered
+// once homed; on the Uno (no endstops) it is not in the image.
+TEST(Homing, GrblsDollarHHomesAndIsRefusedWithoutEndstops) {
+  sim::Machine m(simtest::image("m32-direct"));
+  sim::Endstops switches(m);
+  for (char a : {'X', 'Y', 'Z'}) switches.set_position(a, -2500);
+  for (const char* l : {"$H", "POS"}) m.serial().add_line(l);
+  ASSERT_EQ(m.run_script(uint64_t(30 * m.f_cpu())), sim::RunEnd::done);
+  ASSERT_EQ(m.serial().responses().size(), 2u);
+  EXPECT_EQ(m.serial().responses()[0].answer, "ok");
+  for (char a : {'X', 'Y', 'Z'}) EXPECT_EQ(m.axis(a)->position, -1500) << a;  // 1 mm off the switch
+  EXPECT_EQ(m.serial().messages().back(), "pos X:0 Y:0 Z:0 E:0");
+  auto uno = simtest::run("uno", {"$H"});
+  ASSERT_EQ(uno->serial().responses().size(), 1u);
+  EXPECT_EQ(uno->serial().responses()[0].answer, "error:3");
+}
+
 TEST(Homing, EveryAxisInOrderThenPositionsMeanTheSameOnThePins) {
   Printer p(200);
   p.switches().set_position('X', -5000);

@@ -25,7 +25,9 @@ namespace {
 std::string said(const sim::Response& r) { return sim::SerialHost::is_ok(r.answer) ? r.answer : "error: " + r.reason; }
 
 constexpr const char* kAlarmRefusal = "error: alarm (hard limit, failed homing, reset in motion): M999 or $X unlocks";
-constexpr const char* kAlarmLine = "ALARM: hard limit: endstop hit, axes stopped, position lost; M999 unlocks";
+// grbl's alarm 1 (hard limit) and its reason (reply::alarm()).
+constexpr const char* kAlarmLine = "ALARM:1";
+constexpr const char* kAlarmReason = "[MSG:hard limit: endstop hit, axes stopped, position lost]";
 
 uint64_t last_step(const sim::Machine& m) {
   uint64_t last = 0;
@@ -85,6 +87,7 @@ TEST(Limits, ASwitchReachedMidMoveStopsEveryAxisWithinOneStepPeriod) {
                                      << " cycles after the switch, period " << period;
       // The alarm: said once; the next motion commands refused, G28 too.
       EXPECT_EQ(count(m.serial().messages(), kAlarmLine), 1) << where;
+      EXPECT_EQ(count(m.serial().messages(), kAlarmReason), 1) << where;
       const auto& r = m.serial().responses();
       EXPECT_EQ(said(r.at(0)), "ok") << where;  // accepted before the switch closed
       EXPECT_EQ(said(r.at(1)), "ok") << where;  // the motion ended (stopped)
@@ -126,6 +129,7 @@ TEST(Limits, ASwitchClosedAtAnyMomentStopsWithinOneStepPeriod) {
       EXPECT_LE(last, press + period) << move << ", pressed " << (press - start) << " cycles in";
       EXPECT_EQ(said(m.serial().responses().at(2)), kAlarmRefusal);
       EXPECT_EQ(count(m.serial().messages(), kAlarmLine), 1);
+      EXPECT_EQ(count(m.serial().messages(), kAlarmReason), 1);
       ++cases;
     }
   }

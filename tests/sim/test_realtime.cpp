@@ -167,12 +167,13 @@ TEST(Realtime, CtrlXStopsTheStepsAtOnceAndRestarts) {
   // motion is refused until $X. (The host's M400 in flight at the reset
   // is never answered: the lines go raw.)
   const size_t seen = m.serial().received().size();
-  m.run([&] { return m.serial().received().size() >= seen + 3; }, uint64_t(0.1 * kTick));
+  m.run([&] { return m.serial().received().size() >= seen + 4; }, uint64_t(0.1 * kTick));
   const auto& got = m.serial().received();
-  ASSERT_GE(got.size(), seen + 3);
+  ASSERT_GE(got.size(), seen + 4);
   EXPECT_EQ(got[seen], got[1]);  // [MSG:avrmotion ...]
   EXPECT_EQ(got[seen + 1], "ALARM:3");
-  EXPECT_EQ(got[seen + 2], "[MSG:'$X' to unlock]");
+  EXPECT_EQ(got[seen + 2], "[MSG:reset while in motion, position lost]");
+  EXPECT_EQ(got[seen + 3], "[MSG:'$X' to unlock]");
   const double x = m.axis('X')->steps();
   const size_t before_status = m.serial().received().size();
   m.serial().send_raw("?");

@@ -304,9 +304,9 @@ const char kNotHere[] PROGMEM = "not in this image";
 
 // grbl's '$' lines: `$` help, `$I` build info, `$G` the parser state, `$X`
 // unlock (the alarm of a hard limit, a failed homing or a soft reset in
-// motion: docs/realtime.md); the settings and homing commands (and realtime
-// bytes sent as a line) are refused with grbl's "not recognized or
-// supported" until they exist.
+// motion: docs/realtime.md), `$H` homing (G28, on a board with homing); the
+// settings commands (and realtime bytes sent as a line) are refused with
+// grbl's "not recognized or supported" until they exist.
 bool grbl_system(char* p) {
   p = skip_blanks(p);
   const char c = *p;
@@ -318,8 +318,12 @@ bool grbl_system(char* p) {
   const char what = char(p[1] & ~0x20);
   if (p[1] == '\0') {
     hal::uart::write_P(PSTR("[HLP:$ $I $G $X]\n"));
-  } else if (p[2] != '\0' || !(what == 'I' || what == 'X' || (board::kGcode && what == 'G'))) {
+  } else if (p[2] != '\0' || !(what == 'I' || what == 'X' || (board::kGcode && what == 'G') ||
+                                (board::kHoming && what == 'H'))) {
     error(code::bad_system_command, kNotHere);
+    return true;
+  } else if (what == 'H') {  // G28: every axis with an endstop, its answer when homed
+    if (gcode::accept("G28")) hold(Waiting::gcode);
     return true;
   } else if (what == 'X') {
     limits::unlock();

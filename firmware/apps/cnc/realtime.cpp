@@ -73,8 +73,7 @@ void write_state() {
 void boot(bool by_watchdog) {
   if (by_watchdog && reset_in_motion == kMotionLost) {
     limits::fail();
-    hal::uart::write_P(PSTR("ALARM:3\n"));
-    reply::info_P(PSTR("'$X' to unlock"));
+    reply::alarm(3, PSTR("reset while in motion, position lost"));
   }
   reset_in_motion = 0;
 }

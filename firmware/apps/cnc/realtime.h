@@ -17,8 +17,8 @@
 //         the chip restarts through the watchdog 15 ms later; no step is made
 //         after the byte is received. What was queued is gone. A reset that
 //         stopped steps leaves the position lost: after the banner boot()
-//         prints grbl's `ALARM:3` and `[MSG:'$X' to unlock]`, and motion is
-//         refused (error:9) until `$X` (or M999).
+//         prints grbl's `ALARM:3` (reply::alarm()), and motion is refused
+//         (error:9) until `$X` (or M999).
 #pragma once
 
 namespace realtime {

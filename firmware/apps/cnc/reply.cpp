@@ -52,4 +52,18 @@ void unknown_command(const char* line) {
   ok();
 }
 
+void alarm(uint8_t grbl_alarm, const char* progmem_reason) {
+  if (kMarlin) {
+    hal::uart::write_P(PSTR("Error:"));
+    hal::uart::write_P(progmem_reason);
+    hal::uart::write_P(PSTR(", M999 unlocks\n"));
+    return;
+  }
+  hal::uart::write_P(PSTR("ALARM:"));
+  hal::uart::write_u32(grbl_alarm);
+  hal::uart::write('\n');
+  info_P(progmem_reason);
+  info_P(PSTR("'$X' to unlock"));
+}
+
 }  // namespace reply

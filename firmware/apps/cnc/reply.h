@@ -50,13 +50,11 @@ void info_end();
 // `echo:<text>` or `[MSG:<text>]` as one line.
 void info_P(const char* progmem_text);
 
-// A line of its own, not an answer to any line: the machine has stopped
-// (a hard limit) and refuses motion until unlocked.
-inline void alarm(const char* progmem_reason) {
-  hal::uart::write_P(PSTR("ALARM: "));
-  hal::uart::write_P(progmem_reason);
-  hal::uart::write('\n');
-}
+// Lines of their own, not an answer to any line: the machine has stopped
+// (a hard limit, a soft reset in motion) and refuses motion until unlocked.
+// grbl: `ALARM:<n>` (grbl's alarm number), `[MSG:<reason>]` and `[MSG:'$X'
+// to unlock]`; Marlin: `Error:<reason>, M999 unlocks`.
+void alarm(uint8_t grbl_alarm, const char* progmem_reason);
 
 // A position in steps, or for an axis counted in fractions of a full step,
 // in full steps with the decimals needed (1/64 -> 0.015625): "450", "-3.25".
