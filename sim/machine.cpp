@@ -104,6 +104,10 @@ Machine::Machine(const std::string& elf_path)
 
   const uint16_t ram_start = uint16_t(avr_->ioend + 1);
   paint_start_ = uint16_t(ram_start + fw.datasize + fw.bsssize);
+  // .noinit (a soft reset's mark, firmware/apps/cnc/realtime.cpp) lies after
+  // .bss: static data too, up to the linker's _end.
+  const ElfSymbol end = find_symbol(elf_path, "_end");
+  if (end.found && uint16_t(end.value) > paint_start_) paint_start_ = uint16_t(end.value);
   for (uint32_t a = ram_start; a <= avr_->ramend; ++a) avr_->data[a] = kPaint;
 
   serial_.reset(new SerialHost(avr_, board_.baud));
