@@ -226,7 +226,7 @@ class BasicTrapezoidRuns {
   // Cruise runs of blocks started from now on last under 2^(17 - halvings)
   // ticks (0..8): shorter runs, and a feed hold waits less for the queue.
   void shorten_cruise(uint8_t halvings) { shorter_ = halvings; }
-  // Every part of the planned run handed out: a new start() may take over
+  // Every part of the planned run handed out: start() may take over
   // from event events_done() (a feed hold does, firmware/engine/path.cpp).
   bool between_runs() const { return !(left_[0] | left_[1]); }
 

@@ -131,7 +131,7 @@ class Workflow {
   const Settings& settings() const { return settings_; }
   State state() const { return state_; }
 
-  // One pass of the main loop: `key` is a new key press or 0.
+  // One pass of the main loop: `key` is a key pressed since the last pass, or 0.
   void poll(char key) {
     const State before = state_;
     const uint16_t now = L::ms();

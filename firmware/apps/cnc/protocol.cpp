@@ -38,7 +38,7 @@ am::Command own_command;
 constexpr am::Command& command = board::kGcode ? pending::line.command : own_command;
 // What was accepted and waits for its turn: `command`, the G-code line's
 // action (gcode.h), or Marlin's M400 (motion to end).
-enum class Waiting : uint8_t { nothing, command, gcode, drain };
+enum class Waiting : uint8_t { nothing, command, gcode };
 Waiting waiting;
 // Set when received bytes were lost. The gap lies somewhere after the bytes
 // still in the receive ring, so every line completed from then on is refused
@@ -292,9 +292,6 @@ bool marlin_code(char* p) {
       firmware_info();
       ok();
       return true;
-    case 400:
-      hold(Waiting::drain);
-      return true;
     default:
       return false;
   }
@@ -377,11 +374,7 @@ void on_line(Reader::Line kind) {
 bool done_waiting() {
   switch (waiting) {
     case Waiting::command: return !board::kCommands || execute(command);
-    case Waiting::gcode: return !board::kGcode || gcode::execute();
-    default:  // drain: Marlin's M400
-      if (!path::at_rest()) return false;
-      ok();
-      return true;
+    default: return !board::kGcode || gcode::execute();  // M400 too: the interpreter's wait
   }
 }
 
