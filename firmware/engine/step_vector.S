@@ -3,7 +3,7 @@
  *
  * Cycle counts are from the match: 4 of interrupt response and 3 of the
  * vector table's JMP come first. Each instruction's comment gives its own
- * cycles, then the running total from the match where a path is timed.
+ * cycles and, on the timed paths, the running total from the match.
  * Steady cruise of the timer-pulsed axis is the hot path and is written in
  * assembly: ending the pulse (after the board's pulse width), re-arming it
  * and counting, where a C handler would spend more than that saving and
@@ -69,18 +69,18 @@ TIMER1_COMPA_vect:
 	lds r24, step_fast		; 2
 	cpi r24, 1			; 1
 	breq 2f				; 1 / 2 taken: a step with more to follow
-	lds r24, step_coordinated
-	tst r24
-	brne 6f
-	pop r24
-	out _SFR_IO_ADDR(SREG), r24
-	pop r24
-	jmp __vector_step_slow
+	lds r24, step_coordinated	; 2
+	tst r24				; 1
+	brne 6f				; 1 / 2
+	pop r24				; 2
+	out _SFR_IO_ADDR(SREG), r24	; 1
+	pop r24				; 2
+	jmp __vector_step_slow		; 3, 2 as the RJMP --relax makes it (every image)
 6:
-	pop r24
-	out _SFR_IO_ADDR(SREG), r24
-	pop r24
-	jmp __vector_step_coordinated
+	pop r24				; 2
+	out _SFR_IO_ADDR(SREG), r24	; 1
+	pop r24				; 2
+	jmp __vector_step_coordinated	; 3, 2 as an RJMP
 	/* Another step of this segment follows: re-arm and count. */
 2:
 	ldi r24, STEP_OC1A_SET		; 1
@@ -157,11 +157,11 @@ TIMER1_COMPA_vect:
 	sts TCCR1A_MEM, r25		; 2  33
 	ldi r25, HAL_FORCE_OC1A_VALUE	; 1  34
 	sts FORCE_MEM, r25		; 2  36  the pulse ends
-	pop r31
-	pop r30
-	pop r25
-	pop r24
-	out _SFR_IO_ADDR(SREG), r24
-	pop r24
-	jmp __vector_step_switch
+	pop r31				; 2
+	pop r30				; 2
+	pop r25				; 2
+	pop r24				; 2
+	out _SFR_IO_ADDR(SREG), r24	; 1
+	pop r24				; 2
+	jmp __vector_step_switch	; 3, 2 as an RJMP
 	.size TIMER1_COMPA_vect, . - TIMER1_COMPA_vect
