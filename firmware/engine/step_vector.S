@@ -20,11 +20,13 @@
  * (__vector_step_slow, __vector_step_coordinated, __vector_step_switch in
  * step_engine.cpp), which then runs exactly as if it were the vector.
  *
- * The vector saves nothing of its own but SREG and the registers it names.
- * The engine's shared state is read by its assembler names (step_queue,
- * step_fast, ...: step_engine.cpp). The layout of the queue and its segments
- * and TCCR1A's OC1A modes are in step_vector.h, checked against the C++
- * there; the registers are <avr/io.h>'s and hal/avr/family.h's. The two
+ * The vector saves SREG and the registers it uses, nothing else; the C
+ * handlers are entered with everything as the interrupt found it. Its
+ * section follows step_engine.o's code in the link, so the JMPs to them stay
+ * within the reach of the RJMPs --relax makes of them. The engine's shared
+ * state is read by its assembler names (step_queue, step_fast, ...:
+ * step_engine.cpp). The layout of the queue and its segments and TCCR1A's
+ * OC1A modes are in step_vector.h, checked against the C++ there; the registers are <avr/io.h>'s and hal/avr/family.h's. The two
  * per-board numbers are in step_vector_board.h, generated for each image
  * from the board header (step_vector_board.cpp): STEP_VECTOR_TIMER_AXIS,
  * whether the board has a timer-pulsed axis (without one the fast path's
