@@ -21,9 +21,10 @@
  * step_engine.cpp), which then runs exactly as if it were the vector.
  *
  * The vector saves SREG and the registers it uses, nothing else; the C
- * handlers are entered with everything as the interrupt found it. Its
- * section follows step_engine.o's code in the link, so the JMPs to them stay
- * within the reach of the RJMPs --relax makes of them. The engine's shared
+ * handlers are entered with everything as the interrupt found it. The jumps
+ * to them are RJMPs (2 cycles): its section follows step_engine.o's code in
+ * the link, and were it ever linked out of an RJMP's reach (+-4 KB) the link
+ * would fail, not slow the vector down. The engine's shared
  * state is read by its assembler names (step_queue, step_fast, ...:
  * step_engine.cpp). The layout of the queue and its segments and TCCR1A's
  * OC1A modes are in step_vector.h, checked against the C++ there; the registers are <avr/io.h>'s and hal/avr/family.h's. The two
@@ -77,12 +78,12 @@ TIMER1_COMPA_vect:
 	pop r24				; 2
 	out _SFR_IO_ADDR(SREG), r24	; 1
 	pop r24				; 2
-	jmp __vector_step_slow		; 3, 2 as the RJMP --relax makes it (every image)
+	rjmp __vector_step_slow		; 2
 6:
 	pop r24				; 2
 	out _SFR_IO_ADDR(SREG), r24	; 1
 	pop r24				; 2
-	jmp __vector_step_coordinated	; 3, 2 as an RJMP
+	rjmp __vector_step_coordinated	; 2
 	/* Another step of this segment follows: re-arm and count. */
 2:
 	ldi r24, STEP_OC1A_SET		; 1
@@ -165,5 +166,5 @@ TIMER1_COMPA_vect:
 	pop r24				; 2
 	out _SFR_IO_ADDR(SREG), r24	; 1
 	pop r24				; 2
-	jmp __vector_step_switch	; 3, 2 as an RJMP
+	rjmp __vector_step_switch	; 2
 	.size TIMER1_COMPA_vect, . - TIMER1_COMPA_vect
