@@ -14,14 +14,14 @@
 # workflow to go idle with every line received, closes the port and prints
 # the report's axes.
 #
-# Status (run once here, cncjs 1.11.5 on Node.js 20, npm's install scripts
-# not run): cncjs connects in Grbl mode, reads the banner, its `$$` gets
-# error:3 (`[MSG:not in this image]`), and it streams counting against grbl's
-# 128 bytes: the firmware's 64-byte receive ring overflows, lines are refused
-# with error:115 (serial overrun, none runs spliced) and cncjs holds the
-# workflow at the first error, so this check FAILS today. It needs the
-# 128-byte ring and the realtime `?` (cncjs polls with it, no line end),
-# which are separate work (docs/protocol.md).
+# Status (run 2026-12-02, cncjs 1.11.5 on Node.js 20, npm's install scripts
+# not run): cncjs connects in Grbl mode and reads the banner; its `$$` gets
+# error:3 (`[MSG:not in this image]`: no settings listing on the m32-cnc
+# yet); it polls with `?` and streams counting against grbl's 128 bytes into
+# the 128-byte receive ring: 204 of 204 lines acknowledged, no error, and the
+# report ends on the square's last target, X 1.234 Y 5.678 mm. The check
+# fails when a line is not acknowledged or, for the default file, the
+# report's X and Y are not that target.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/setup.sh
@@ -88,3 +88,9 @@ socket.on('sender:status', (s) => {
 EOF
 wait $sim
 grep -A6 '"axes"' "$work/report.json"
+if [ -z "${1:-}" ]; then
+  grep -q '"X": {"steps": 1234, "mm": 1.234,' "$work/report.json" &&
+    grep -q '"Y": {"steps": 5678, "mm": 5.678,' "$work/report.json" ||
+    { echo "cncjs-check: FAILED, the report does not end on X1.234 Y5.678" >&2; exit 1; }
+  echo "cncjs-check: ends on X1.234 Y5.678"
+fi
