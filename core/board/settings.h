@@ -29,7 +29,9 @@
 //   plus the axis.) Every value is a uint32_t: thousandths of its unit for
 //   the measures (parsed and printed with three decimals, rounded half away
 //   from zero by core/text/fixed_number.h), the number itself for flags and
-//   masks. count() entries; at(i) the i-th, find(number) its index or -1.
+//   masks. count() entries; at(i) the i-th, find(number) its index or -1;
+//   first(kind) the index of a kind's first entry (then one per axis, or
+//   per switch in the switches' order).
 //
 //   Block<Count> is what the EEPROM holds: a Header (kTag, the version, the
 //   count), the values in the layout's order and a checksum over all that
@@ -56,9 +58,9 @@
 //
 //   Conversions (64-bit, rounded to nearest; steps_per_m is thousandths of
 //   steps/mm, the board descriptor's unit): rate_steps() mm/min -> steps/s,
-//   accel_steps() mm/s^2 -> steps/s^2, length_steps() mm -> steps; and
-//   back, rounded down (so a board's own figure, converted to mm and back,
-//   never exceeds itself): rate_mm(), accel_mm(), length_mm().
+//   accel_steps() mm/s^2 -> steps/s^2, length_steps() mm -> steps, each
+//   0xFFFFFFFF beyond 2^31 - 1; and back, for the defaults: rate_mm(),
+//   accel_mm(), length_mm().
 #pragma once
 #include <stdint.h>
 
@@ -117,22 +119,39 @@ inline Range range(Kind k) {
                                                             : Range{0, 0xFFFFFFFFu};
 }
 
-// round(v * steps_per_m / div): v in thousandths of the unit.
-inline uint64_t scaled(uint32_t v, uint32_t steps_per_m, uint32_t div) {
-  return (uint64_t(v) * steps_per_m + div / 2) / div;
+// round(v * steps_per_m / div) (v in thousandths of the unit): false when
+// it exceeds 2^31 - 1. One out-of-line copy of the 64-bit arithmetic on the
+// AVR (core/text/fixed_number.h's scale_round()).
+inline bool to_steps(uint32_t v, uint32_t steps_per_m, uint32_t div, uint32_t& out) {
+  int32_t r;
+  if (!scale_round(int32_t(v), steps_per_m, div, r)) return false;
+  out = uint32_t(r);
+  return true;
 }
-inline uint64_t rate_steps(uint32_t mm_per_min, uint32_t steps_per_m) { return scaled(mm_per_min, steps_per_m, 60000000ul); }
-inline uint64_t accel_steps(uint32_t mm_per_s2, uint32_t steps_per_m) { return scaled(mm_per_s2, steps_per_m, 1000000ul); }
-inline uint64_t length_steps(uint32_t mm, uint32_t steps_per_m) { return scaled(mm, steps_per_m, 1000000ul); }
+constexpr uint32_t kPerRate = 60000000ul, kPerLength = 1000000ul;  // mm/min and mm (or mm/s^2)
+// What the engine runs: steps/s, steps/s^2, steps (0xFFFFFFFF beyond 2^31 - 1).
+inline uint32_t rate_steps(uint32_t mm_per_min, uint32_t steps_per_m) {
+  uint32_t s;
+  return to_steps(mm_per_min, steps_per_m, kPerRate, s) ? s : 0xFFFFFFFFu;
+}
+inline uint32_t length_steps(uint32_t mm, uint32_t steps_per_m) {
+  uint32_t s;
+  return to_steps(mm, steps_per_m, kPerLength, s) ? s : 0xFFFFFFFFu;
+}
+inline uint32_t accel_steps(uint32_t mm_per_s2, uint32_t steps_per_m) { return length_steps(mm_per_s2, steps_per_m); }
+// And back, for the defaults: the board's figure in the settings' unit,
+// rounded to the nearest thousandth (0xFFFFFFFF beyond 2^31 - 1). Back in
+// steps it is the board's figure again whenever 0.0005 of the unit is less
+// than half a step (every board here: 1000 steps/mm, exact).
 inline uint32_t rate_mm(uint32_t steps_per_s, uint32_t steps_per_m) {
-  return uint32_t(uint64_t(steps_per_s) * 60000000ul / steps_per_m);
-}
-inline uint32_t accel_mm(uint32_t steps_per_s2, uint32_t steps_per_m) {
-  return uint32_t(uint64_t(steps_per_s2) * 1000000ul / steps_per_m);
+  uint32_t v;
+  return to_steps(steps_per_s, kPerRate, steps_per_m, v) ? v : 0xFFFFFFFFu;
 }
 inline uint32_t length_mm(uint32_t steps, uint32_t steps_per_m) {
-  return uint32_t(uint64_t(steps) * 1000000ul / steps_per_m);
+  uint32_t v;
+  return to_steps(steps, kPerLength, steps_per_m, v) ? v : 0xFFFFFFFFu;
 }
+inline uint32_t accel_mm(uint32_t steps_per_s2, uint32_t steps_per_m) { return length_mm(steps_per_s2, steps_per_m); }
 
 template <uint8_t Axes>
 struct EngineLimits {
@@ -201,14 +220,10 @@ struct Layout {
     return Entry{Kind(k), axis_of(Kind(k), i)};
   }
 
-  // The index of a kind's entry for axis `axis` (the first, for a single
-  // kind), or -1.
-  static int16_t index_of(Kind kind, uint8_t axis) {
-    for (uint8_t i = 0; i < count(); ++i) {
-      const Entry e = at(i);
-      if (e.kind == kind && e.axis == axis) return i;
-    }
-    return -1;
+  // The index of a kind's first entry: then axis a's (steps, rate, accel:
+  // first + a) or switch k's (travel, locate, seek, pull-off: first + k).
+  static constexpr uint8_t first(Kind kind, uint8_t k = 0) {
+    return k == uint8_t(kind) ? 0 : uint8_t(multiplicity(Kind(k)) + first(kind, uint8_t(k + 1)));
   }
 
   static int16_t find(uint16_t n) {
@@ -231,11 +246,10 @@ struct Layout {
       const Range r = range(e.kind);
       if (v < r.min || v > r.max) return Error::out_of_range;
       if (e.kind < Kind::rate || e.kind == Kind::protocol || e.kind >= Kind::gain_p) continue;
-      const uint32_t spm = b.value[index_of(Kind::steps, e.axis)];
+      const uint32_t spm = b.value[first(Kind::steps) + e.axis];
       const uint32_t top = limits.max_rate[e.axis];
-      const uint64_t s = e.kind == Kind::rate || e.kind == Kind::locate || e.kind == Kind::seek
-                             ? rate_steps(v, spm)
-                             : length_steps(v, spm);  // accel's scale is a length's
+      const bool per_min = e.kind == Kind::rate || e.kind == Kind::locate || e.kind == Kind::seek;
+      const uint32_t s = per_min ? rate_steps(v, spm) : length_steps(v, spm);  // accel's scale is a length's
       const bool fits = e.kind == Kind::rate       ? s >= 1 && s <= top
                         : e.kind == Kind::accel    ? s >= 2 && s <= limits.max_accel
                         : e.kind == Kind::travel   ? s >= 1 && s <= 0x7FFFFFFFu

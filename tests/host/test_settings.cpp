@@ -278,25 +278,31 @@ TEST(Settings, ConversionsAgreeWithArithmeticDoneIndependently) {
   EXPECT_EQ(length_steps(1000, 80000), 80u);         // 1 mm
   EXPECT_EQ(rate_mm(667, 80000), 500250u);           // 667 steps/s: 500.25 mm/min
   EXPECT_EQ(length_mm(200000, 1000000), 200000u);
-  // Down from the board's figure and up again: never above it, and within
-  // one step of it.
+  EXPECT_EQ(rate_steps(1000000000u, 10000000u), 166666667u);  // the range's corner: fits
+  EXPECT_EQ(accel_steps(1000000000u, 10000000u), 0xFFFFFFFFu);  // 10^10: beyond, said so
+  // Down from a board's figure and up again: the figure itself while
+  // 0.0005 of the unit is under half a step (kPerRate: 0.5 * spm / 6e7;
+  // lengths: 0.5 * spm / 1e6), within one step beyond.
   uint32_t seed = 12345;
+  int exact = 0;
   for (int n = 0; n < 20000; ++n) {
     seed = seed * 1103515245u + 12345u;
     const uint32_t spm = 1000 + seed % 10000000;
     seed = seed * 1103515245u + 12345u;
     const uint32_t steps = 1 + seed % 800000;
-    if (uint64_t(steps) * 60000000u / spm > 1000000000u) continue;  // beyond the range
-    const uint64_t back = rate_steps(rate_mm(steps, spm), spm);
-    EXPECT_LE(back, steps) << spm << " " << steps;
-    EXPECT_GE(back + 1, steps) << spm << " " << steps;
-    const uint64_t a = accel_steps(accel_mm(steps, spm), spm);
-    EXPECT_LE(a, steps);
-    EXPECT_GE(a + 1 + spm / 1000000, steps);  // 0.001 mm/s^2 is spm / 10^6 steps/s^2
-    // Against double arithmetic.
-    const double exact = double(steps) * 1000.0 * double(spm) / 60e6;
-    EXPECT_NEAR(double(rate_steps(steps * 1000u, spm)), exact, 0.5 + 1e-6);
+    const double mm = double(steps) * 60e6 / spm;
+    if (mm > 2147483647.0) continue;
+    EXPECT_NEAR(double(rate_mm(steps, spm)), mm, 0.5 + 1e-6);  // against double arithmetic
+    EXPECT_EQ(rate_steps(rate_mm(steps, spm), spm), steps) << spm << " " << steps;  // always: spm <= 1e7
+    const uint32_t a = accel_steps(accel_mm(steps, spm), spm);
+    if (spm < 1000000) {
+      EXPECT_EQ(a, steps) << spm << " " << steps;
+      ++exact;
+    } else {
+      EXPECT_NEAR(double(a), double(steps), 0.5 * spm / 1e6 + 0.5) << spm << " " << steps;
+    }
   }
+  EXPECT_GT(exact, 1000);
 }
 
 // The interpreter's scale changed at rest: the machine position in steps

@@ -38,12 +38,14 @@ template <typename Set>
 struct AxisTable;
 template <typename... A>
 struct AxisTable<AxisSet<A...>> {
-  static const am::GcodeAxis value[sizeof...(A)];
+  static am::GcodeAxis value[sizeof...(A)];
 };
 // Scales in the planner's position units (1/64 full step on coil axes), so a
-// target means the same whatever the excitation mode.
+// target means the same whatever the excitation mode. In RAM, as any
+// initialised array on the AVR; a board with settings (board::kSettings)
+// sets each axis's scale from its steps/mm (set_scale()).
 template <typename... A>
-const am::GcodeAxis AxisTable<AxisSet<A...>>::value[sizeof...(A)] = {
+am::GcodeAxis AxisTable<AxisSet<A...>>::value[sizeof...(A)] = {
     am::GcodeAxis{A::name, modes_of<A>(0, 0), A::descriptor().steps_per_m * OwnUnits<A>::per_full_step}...};
 
 // Built on first use, so a board without G-code links none of it. A board
@@ -277,6 +279,9 @@ bool accept(const char* line) {
   } else if (action.kind == am::GcodeActionKind::home) {
     if (!board::kHoming || (action.axes & ~board::Endstops::axes)) {
       refusal = PSTR("G28 homes only axes with an endstop");
+    } else if (board::kSettings && !limits::homing_enabled) {
+      refusal = PSTR("homing is off ($22=0)");
+      refusal_code = reply::code::homing_off;
     } else if (limits::alarm()) {
       refusal = planner::refusal_text(planner::Refusal::alarm);
       refusal_code = reply::code::alarm_lock;
@@ -371,6 +376,12 @@ bool execute() {
   reply::ok();
   return true;
 }
+
+void set_scale(uint8_t axis, uint32_t steps_per_m) { AxisTable<board::Axes>::value[axis].steps_per_m = steps_per_m; }
+
+void rescale() { interpreter().rescale(); }
+
+uint32_t steps_per_m(uint8_t axis) { return AxisTable<board::Axes>::value[axis].steps_per_m; }
 
 uint32_t feed_mm_per_min() { return uint32_t(interpreter().state().modal.feed) / 10000u; }
 
