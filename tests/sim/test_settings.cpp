@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "endstops.h"
 #include "sim_fixture.h"
 
 namespace {
@@ -219,6 +220,22 @@ TEST(Settings, ANewScaleKeepsTheMachinePositionInSteps) {
   EXPECT_EQ(settings_of(*m)[100], "160.000");
 }
 
+// A change that arrives while the axes move waits for them to stop: the
+// move keeps its steps, the answer comes after its last step.
+TEST(Settings, AChangeWaitsForTheMachineAtRest) {
+  auto m = simtest::run(kImage, {"G1 X10 F1200", "$100=80", "M114", "G1 X130"});
+  const std::vector<sim::Response>& r = m->serial().responses();
+  ASSERT_EQ(r.size(), 4u);
+  for (const sim::Response& x : r) EXPECT_EQ(x.answer, "ok") << x.line;
+  const std::vector<uint64_t>& steps = m->axis('X')->step_cycles;
+  ASSERT_EQ(steps.size(), 10000u + 400u);  // 10 mm at 1000, then 5 mm at 80
+  EXPECT_GT(r[1].answer_cycle, steps[9999]);
+  EXPECT_LT(r[1].sent_cycle, steps[9999] - uint64_t(0.3 * m->f_cpu()));  // sent well before the move ended
+  bool found = false;
+  for (const std::string& l : m->serial().messages()) found |= l.rfind("X:125.0000 ", 0) == 0;  // 10000 / 80
+  EXPECT_TRUE(found);
+}
+
 // Out of range, not a number, read-only, unknown, beyond the engine: each
 // refused with its error, and `$$` after them is the defaults, the moves
 // as before.
@@ -337,6 +354,42 @@ TEST(Settings, ACorruptOrOlderBlockLoadsTheDefaultsAndSaysSoOnce) {
   // Its sum checked the same way, the stored block itself is taken.
   auto good = boot_with(stored, {"G1 X10 F600", "M400"});
   EXPECT_EQ(good->axis('X')->steps(), 800);
+}
+
+// The homing settings are what G28 runs: X seeks at $250 (600 mm/min:
+// 10000 steps/s, its fastest steps), pulls off by $270 above the switch;
+// Z's travel ($132) is the soft limit, and $20=0 lifts it.
+TEST(Settings, HomingRunsAtItsSettingsAndTheSoftLimitsFollowThem) {
+  for (const bool soft : {true, false}) {
+    sim::Machine m(simtest::image(kImage));
+    sim::Endstops switches(m);
+    switches.set_position('X', -3000);  // X 3 mm above its switch
+    switches.set_position('Y', -1000);
+    switches.set_position('Z', -500);
+    const std::vector<std::string> lines = {"$250=600", "$270=2.5", "$132=3", soft ? "$20=1" : "$20=0", "G28",
+                                            "G1 Z3 F600", "G1 Z3.001", "M400", "M114"};
+    for (const std::string& l : lines) m.serial().add_line(l);
+    ASSERT_EQ(m.run_script(uint64_t(20 * m.f_cpu())), sim::RunEnd::done);
+    const std::vector<sim::Response>& r = m.serial().responses();
+    ASSERT_EQ(r.size(), lines.size());
+    for (size_t i = 0; i < 6; ++i) EXPECT_EQ(r[i].answer, "ok") << lines[i] << " " << r[i].reason;
+    if (soft) {
+      EXPECT_EQ(r[6].answer, "error:118");
+      EXPECT_EQ(r[6].reason, "move beyond the soft limits");
+    } else {
+      EXPECT_EQ(r[6].answer, "ok");
+    }
+    // The switch closes within a step of -3000; X 2500 steps back up from
+    // there, Y and Z the board's 1000 ($271, $272 unchanged).
+    EXPECT_NEAR(double(m.axis('X')->position), -3000 + 2500, 1.5);
+    EXPECT_NEAR(double(m.axis('Y')->position), -1000 + 1000, 1.5);
+    EXPECT_NEAR(double(m.axis('Z')->position), -500 + 1000 + (soft ? 3000 : 3001), 1.5);
+    const double fastest = double(m.axis('X')->min_interval());
+    EXPECT_NEAR(fastest, m.f_cpu() / 10000.0, m.f_cpu() / 10000.0 * 0.01);  // $250 = 10000 steps/s
+    // Y keeps the board's 25 mm/s.
+    EXPECT_NEAR(double(m.axis('Y')->min_interval()), m.f_cpu() / 25000.0, m.f_cpu() / 25000.0 * 0.01);
+    std::printf("$20=%d: X's fastest step %.0f cycles; %s\n", soft, fastest, m.serial().messages().back().c_str());
+  }
 }
 
 // Homing off ($22=0) refuses G28 and $H, grbl's error 5.
