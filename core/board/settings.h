@@ -106,18 +106,27 @@ struct Range {
   uint32_t min, max;
 };
 // The range a value may be set to (a read-only one's: anything, it is not
-// settable).
-inline Range range(Kind k) {
-  return k == Kind::junction                               ? Range{1, 10000}
-         : k == Kind::soft_limits || k == Kind::homing      ? Range{0, 1}
-         : k == Kind::steps                                 ? Range{1000, 10000000}
-         : k == Kind::rate || k == Kind::accel || k == Kind::locate || k == Kind::seek ? Range{1000, 1000000000}
-         : k == Kind::travel                                ? Range{1000, 100000000}
-         : k == Kind::pull_off                              ? Range{0, 1000000}
-         : k == Kind::gain_d                                ? Range{0, 10000000}
-         : k >= Kind::gain_p                                ? Range{0, 1000000}
-                                                            : Range{0, 0xFFFFFFFFu};
+// settable). Two functions of immediates: a table of Range structs would
+// be copied into the AVR's RAM.
+inline uint32_t range_min(Kind k) {
+  return k == Kind::junction ? 1
+         : k == Kind::steps || k == Kind::rate || k == Kind::accel || k == Kind::locate || k == Kind::seek ||
+                 k == Kind::travel
+             ? 1000
+             : 0;
 }
+inline uint32_t range_max(Kind k) {
+  return k == Kind::junction                          ? 10000
+         : k == Kind::soft_limits || k == Kind::homing ? 1
+         : k == Kind::steps                            ? 10000000
+         : k == Kind::rate || k == Kind::accel || k == Kind::locate || k == Kind::seek ? 1000000000
+         : k == Kind::travel                           ? 100000000
+         : k == Kind::pull_off                         ? 1000000
+         : k == Kind::gain_d                           ? 10000000
+         : k >= Kind::gain_p                           ? 1000000
+                                                       : 0xFFFFFFFFu;
+}
+inline Range range(Kind k) { return Range{range_min(k), range_max(k)}; }
 
 // round(v * steps_per_m / div) (v in thousandths of the unit): false when
 // it exceeds 2^31 - 1. One out-of-line copy of the 64-bit arithmetic on the
@@ -243,8 +252,7 @@ struct Layout {
     for (uint8_t i = 0; i < count(); ++i) {
       const Entry e = at(i);
       const uint32_t v = b.value[i];
-      const Range r = range(e.kind);
-      if (v < r.min || v > r.max) return Error::out_of_range;
+      if (v < range_min(e.kind) || v > range_max(e.kind)) return Error::out_of_range;
       if (e.kind < Kind::rate || e.kind == Kind::protocol || e.kind >= Kind::gain_p) continue;
       const uint32_t spm = b.value[first(Kind::steps) + e.axis];
       const uint32_t top = limits.max_rate[e.axis];
@@ -279,8 +287,8 @@ struct Layout {
     const NumberStatus s = parse_fixed(text, digits(k), v, point);
     if (s == NumberStatus::bad || (s == NumberStatus::ok && (*text != '\0' || (point && !digits(k)))))
       return Error::bad_number;
-    const Range r = range(k);
-    if (s != NumberStatus::ok || v < 0 || uint32_t(v) < r.min || uint32_t(v) > r.max) return Error::out_of_range;
+    if (s != NumberStatus::ok || v < 0 || uint32_t(v) < range_min(k) || uint32_t(v) > range_max(k))
+      return Error::out_of_range;
     const uint32_t was = b.value[i];
     b.value[i] = uint32_t(v);
     const Error e = validate(b, limits);
