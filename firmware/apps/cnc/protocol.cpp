@@ -383,12 +383,13 @@ void on_line(Reader::Line kind) {
 bool done_waiting() {
   switch (waiting) {
     case Waiting::command: return !board::kCommands || execute(command);
-    case Waiting::setting:
-      if (!board::kSettings) return true;
-      if (!path::at_rest()) return false;
-      settings::change(skip_blanks(reader.text()) + 1);
-      return true;
-    default: return !board::kGcode || gcode::execute();  // M400 too: the interpreter's wait
+    default:
+      if (board::kSettings && waiting == Waiting::setting) {
+        if (!path::at_rest()) return false;
+        settings::change(skip_blanks(reader.text()) + 1);
+        return true;
+      }
+      return !board::kGcode || gcode::execute();  // M400 too: the interpreter's wait
   }
 }
 
