@@ -351,6 +351,13 @@ TEST(Settings, ACorruptOrOlderBlockLoadsTheDefaultsAndSaysSoOnce) {
   EXPECT_EQ(count_of(*m, kCorrupt), 0u);
   EXPECT_EQ(settings_of(*m), board_defaults(*m));
   EXPECT_EQ(m->axis('X')->steps(), 10000);
+  // A changed tag is no block of ours (another image's bytes, docs/settings.md):
+  // the defaults, without a word.
+  std::vector<uint8_t> other = stored;
+  other[0] ^= 0x01;
+  auto o = boot_with(other, {"$$"});
+  EXPECT_EQ(count_of(*o, kCorrupt) + count_of(*o, kOlder), 0u);
+  EXPECT_EQ(settings_of(*o), board_defaults(*o));
   // Its sum checked the same way, the stored block itself is taken.
   auto good = boot_with(stored, {"G1 X10 F600", "M400"});
   EXPECT_EQ(good->axis('X')->steps(), 800);
