@@ -40,7 +40,7 @@
 //   blank (no tag: an erased EEPROM or something else's bytes), older (the
 //   tag with another version or count: another firmware's layout; not
 //   trusted further) or corrupt (the sum is wrong, or a value out of its
-//   range).
+//   range or beyond the engine's limits: validate()).
 //
 //   Engine limits: the rates and accelerations in steps are what the
 //   engine runs, and must stay within the board's (EngineLimits: each
