@@ -38,6 +38,11 @@ constexpr bool kCommands = true;
 using Endstops = EndstopSet<AxisSet<>, false>;
 constexpr bool kHoming = false;
 constexpr HomingSettings<1> kHomingSettings = {};
+// The machine settings in the EEPROM (firmware/services/settings.h,
+// docs/settings.md): steps/mm, rates, accelerations, junction deviation,
+// homing and limits, `$$` and `$N=value` (grbl) or M500..M503 (Marlin).
+// Only for boards whose axes are all step/dir (one position unit a step).
+constexpr bool kSettings = false;
 // The lathe program's operator panel (firmware/apps/lathe/operator.h) in
 // place of its UART front end.
 constexpr bool kOperatorPanel = false;

@@ -75,7 +75,9 @@
 //   newest_nominal() is the newest block's nominal speed, mm/s (its feed as
 //   the limits hold it). set_steps_per_mm(i, v): axis i's steps per mm changed (a coil axis's
 //   excitation mode, at rest); only lengths derived from steps and the
-//   junction's acceleration use it.
+//   junction's acceleration use it. set_limits(i, rate, accel) and
+//   set_junction_deviation(mm) change what the constructor was given (the
+//   machine's settings, at rest).
 //
 // Why
 //   The all-integer planner this replaces (the former lookahead.h) needed
@@ -170,6 +172,13 @@ class PathPlanner {
 
   // An axis's steps per mm changed (an excitation mode, at rest).
   void set_steps_per_mm(uint8_t axis, float steps_per_mm) { axes_[axis].steps_per_mm = steps_per_mm; }
+  // An axis's limits (settings, at rest: the blocks planned so far keep
+  // theirs) and the junction deviation.
+  void set_limits(uint8_t axis, float max_rate, float max_accel) {
+    axes_[axis].max_rate = max_rate;
+    axes_[axis].max_accel = max_accel;
+  }
+  void set_junction_deviation(float mm) { deviation_ = mm; }
 
   // The newest block's nominal speed along its path, mm/s: its feed as the
   // axes' limits hold it.

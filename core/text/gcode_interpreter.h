@@ -238,6 +238,19 @@ class GcodeInterpreter {
     }
   }
 
+  // The axes' scale (steps_per_m of the table) has changed, at rest: the
+  // machine positions and G92 offsets (steps) stay, the program positions
+  // follow (core/board/settings.h: a steps/mm setting).
+  void rescale() {
+    for (uint8_t i = 0; i < N; ++i) {
+      GcodeAxisState& a = state_.axis[i];
+      int32_t from_offset, c;
+      if (gcode_detail::add_checked(a.steps, -a.offset, from_offset) &&
+          steps_to_length(from_offset, axes_[i].steps_per_m, c))
+        a.coord = c;
+    }
+  }
+
   // Board axis index of an (upper-case) letter, kNoAxis if absent.
   uint8_t index_of(char letter) const {
     for (uint8_t i = 0; i < N; ++i)

@@ -19,6 +19,10 @@ constexpr HomingSettings<3> kHomingSettings = kPrinterHoming;
 
 using Claims = hal::ClaimSet<kStepClock, kClock, hal::claim::uart, Axes::Claims::all, Endstops::claims>;
 
+// Steps/mm, rates, accelerations, junction deviation (and homing and soft
+// limits where the board has endstops) in the EEPROM: `$$`, `$N=value`
+// (firmware/services/settings.h, docs/settings.md).
+constexpr bool kSettings = true;
 constexpr bool kGcode = true;  // the cnc program speaks G-code (docs/gcode.md)
 constexpr bool kArcs = false;
 constexpr uint8_t kPathBlocks = 5;  // look-ahead ring (firmware/engine/path.h), 62 B a block

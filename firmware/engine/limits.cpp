@@ -3,6 +3,7 @@
 namespace limits {
 
 Settings settings = board::kHomingSettings;
+bool soft_limits = true, homing_enabled = true;
 
 namespace {
 
@@ -52,6 +53,7 @@ bool found() {
 void set_homed(uint8_t k) { homed_switches = uint8_t(homed_switches | (1u << k)); }
 
 bool outside(const planner::Move& move) {
+  if (board::kSettings && !soft_limits) return false;
   for (uint8_t k = 0; k != kSwitches; ++k) {
     if (!(homed_switches & (1u << k))) continue;
     const HomingAxis& a = settings.axis[k];

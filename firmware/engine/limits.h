@@ -19,7 +19,10 @@
 //   homed axis beyond its travel: from `home` away from the switch by
 //   `travel` (planner::check(): Refusal::soft_limit, before the move
 //   starts). Axes with switches count their position in steps.
-//   settings: the board's HomingSettings (board::kHomingSettings), in RAM.
+//   settings: the board's HomingSettings (board::kHomingSettings), in RAM;
+//   on a board with settings (firmware/services/settings.h) they come from
+//   the EEPROM, with soft_limits ($20: outside() is false while off) and
+//   homing_enabled ($22: G28 and $H refused while off).
 #pragma once
 #include <stdint.h>
 
@@ -31,6 +34,7 @@ namespace limits {
 constexpr uint8_t kSwitches = board::Endstops::count;
 using Settings = HomingSettings<kSwitches ? kSwitches : 1>;
 extern Settings settings;
+extern bool soft_limits, homing_enabled;
 
 bool alarm();
 void unlock();

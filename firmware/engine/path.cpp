@@ -20,7 +20,6 @@ using Plan = am::PathPlanner<kAxes, board::kPathBlocks>;
 // (trapezoid.h keeps its runs as long as the curvature allows), time enough
 // to plan the next.
 constexpr uint8_t kLowWater = 4;
-constexpr float kJunctionDeviationMm = 0.01f;
 // With a feed hold, cruise runs of under 2^15 ticks (2 ms at 16 MHz): the
 // stop starts after what the engine has queued, at most kQueueSize of them.
 constexpr uint8_t kHoldCruiseHalvings = 2;
@@ -45,7 +44,7 @@ struct Planned<AxisSet<A...>> {
     const am::PathAxis axes[kAxes] = {
         am::PathAxis{1.0f, float(OwnMaxRate<A>::value ? OwnMaxRate<A>::value : board::kMaxStepRate),
                      float(board::kDefaultAccel), A::name != 'E'}...};
-    return Plan(axes, kJunctionDeviationMm, float(highest_rate()));
+    return Plan(axes, float(kJunctionDeviationUm) / 1000.0f, float(highest_rate()));
   }
 };
 
@@ -83,7 +82,11 @@ float carried;
 // Every block handed to the engine.
 bool idle() { return !generating && !(board::kRealtime && stop.held()) && !direct_waiting && dwell_ms == 0 && ring_empty(); }
 
+// A board with settings (board::kSettings: step/dir axes only) has its
+// axes' steps per mm from them (set_axis()); the excitation modes of coil
+// axes change them here.
 void set_steps_per_mm() {
+  if (board::kSettings) return;
   for (uint8_t i = 0; i < kAxes; ++i) {
     const float units_per_mm = float(board::Axes::steps_per_m_at(i)) * board::Axes::units_per_full_step_at(i) / 1000.0f;
     plan().set_steps_per_mm(i, units_per_mm / float(board::Axes::units_for(i, 1, false)));
@@ -180,6 +183,13 @@ Added add(const planner::Move& move, const float (&delta_mm)[kAxes], float feed_
   planner::count(move, at_rest);
   return Added::queued;
 }
+
+void set_axis(uint8_t axis, uint32_t steps_per_m, uint32_t max_rate, uint32_t max_accel) {
+  plan().set_steps_per_mm(axis, float(steps_per_m) / 1000.0f);
+  plan().set_limits(axis, float(max_rate), float(max_accel));
+}
+
+void set_junction_um(uint32_t um) { plan().set_junction_deviation(float(um) / 1000.0f); }
 
 float held_feed() { return plan().newest_nominal() * 60; }
 

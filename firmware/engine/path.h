@@ -53,9 +53,16 @@
 namespace path {
 
 constexpr uint16_t kStartDelayMs = 50;
+// grbl's junction deviation, the default of the $11 setting: 0.01 mm.
+constexpr uint32_t kJunctionDeviationUm = 10;
 
 enum class Added : uint8_t { queued, full, bad_feed };
 Added add(const planner::Move& move, const float (&delta_mm)[board::Axes::count], float feed_mm_per_min, bool rapid);
+// The settings (firmware/services/settings.h), at rest: a G-code block's
+// axis limits in steps (its steps/mm as steps per metre, the top rate in
+// steps/s, the acceleration in steps/s^2) and the junction deviation in um.
+void set_axis(uint8_t axis, uint32_t steps_per_m, uint32_t max_rate, uint32_t max_accel);
+void set_junction_um(uint32_t um);
 // Whether add() would queue a block now (not full).
 bool room();
 // The feed the last queued block runs at, mm/min: its F as the axes' limits

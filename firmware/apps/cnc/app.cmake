@@ -11,6 +11,12 @@ if(heater_line)
 elseif(homing_line)
   list(APPEND APP_FILES services/homing.cpp)
 endif()
+# A board with settings in the EEPROM (`constexpr bool kSettings = true;`)
+# links their service (a board with a heater has all of firmware/services/).
+file(STRINGS ${CMAKE_CURRENT_SOURCE_DIR}/boards/${board_name}.h settings_line REGEX "^constexpr bool kSettings = true;")
+if(settings_line AND NOT heater_line)
+  list(APPEND APP_FILES services/settings.cpp)
+endif()
 # A board with grbl's realtime bytes (`constexpr bool kRealtime = true;`)
 # gets the 128-byte receive ring grbl's senders count characters against,
 # and the receive interrupt hands every byte to its realtime filter first.

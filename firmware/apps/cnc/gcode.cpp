@@ -36,14 +36,24 @@ constexpr uint8_t modes_of(long, long) {
 
 template <typename Set>
 struct AxisTable;
+// Const (the compiler folds its scales) unless a board's settings set them.
+template <bool Settable>
+struct TableEntry {
+  using type = const am::GcodeAxis;
+};
+template <>
+struct TableEntry<true> {
+  using type = am::GcodeAxis;
+};
 template <typename... A>
 struct AxisTable<AxisSet<A...>> {
-  static const am::GcodeAxis value[sizeof...(A)];
+  static typename TableEntry<board::kSettings>::type value[sizeof...(A)];
 };
 // Scales in the planner's position units (1/64 full step on coil axes), so a
-// target means the same whatever the excitation mode.
+// target means the same whatever the excitation mode. A board with settings
+// (board::kSettings) sets each axis's scale from its steps/mm (set_scale()).
 template <typename... A>
-const am::GcodeAxis AxisTable<AxisSet<A...>>::value[sizeof...(A)] = {
+typename TableEntry<board::kSettings>::type AxisTable<AxisSet<A...>>::value[sizeof...(A)] = {
     am::GcodeAxis{A::name, modes_of<A>(0, 0), A::descriptor().steps_per_m * OwnUnits<A>::per_full_step}...};
 
 // Built on first use, so a board without G-code links none of it. A board
@@ -277,6 +287,9 @@ bool accept(const char* line) {
   } else if (action.kind == am::GcodeActionKind::home) {
     if (!board::kHoming || (action.axes & ~board::Endstops::axes)) {
       refusal = PSTR("G28 homes only axes with an endstop");
+    } else if (board::kSettings && !limits::homing_enabled) {
+      refusal = PSTR("homing is off ($22=0)");
+      refusal_code = reply::code::homing_off;
     } else if (limits::alarm()) {
       refusal = planner::refusal_text(planner::Refusal::alarm);
       refusal_code = reply::code::alarm_lock;
@@ -371,6 +384,21 @@ bool execute() {
   reply::ok();
   return true;
 }
+
+namespace {
+template <typename Entry>
+void set_steps_per_m(Entry& e, uint32_t steps_per_m) {
+  e.steps_per_m = steps_per_m;
+}
+template <typename Entry>
+void set_steps_per_m(const Entry&, uint32_t) {}  // a board without settings: never called
+}  // namespace
+
+void set_scale(uint8_t axis, uint32_t steps_per_m) { set_steps_per_m(AxisTable<board::Axes>::value[axis], steps_per_m); }
+
+void rescale() { interpreter().rescale(); }
+
+uint32_t steps_per_m(uint8_t axis) { return AxisTable<board::Axes>::value[axis].steps_per_m; }
 
 uint32_t feed_mm_per_min() { return uint32_t(interpreter().state().modal.feed) / 10000u; }
 

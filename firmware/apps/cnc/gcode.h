@@ -25,6 +25,14 @@ bool claims(const char* line);
 // False when the line was refused (its error is printed).
 bool accept(const char* line);
 bool execute();
+// An axis's scale, position units per metre (the interpreter's mm<->steps):
+// the board's (its descriptor), or its steps/mm setting
+// (firmware/services/settings.h), which sets it at rest and then calls
+// rescale(): machine positions and G92 offsets in steps stay, the program
+// positions in mm follow.
+void set_scale(uint8_t axis, uint32_t steps_per_m);
+void rescale();
+uint32_t steps_per_m(uint8_t axis);
 // The modal feed, whole mm/min (0 before the first F).
 uint32_t feed_mm_per_min();
 // Prints the refusal `e` (its text and grbl number): the direct controls

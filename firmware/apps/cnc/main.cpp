@@ -8,11 +8,13 @@
 #include "../../../hal/avr/watchdog.h"
 #include "../../board.h"
 #include "protocol.h"
+#include "reply.h"
 #include "realtime.h"
 #include "../../engine/clock.h"
 #include "../../engine/step_engine.h"
 #include "../../services/heater.h"
 #include "../../services/homing.h"
+#include "../../services/settings.h"
 
 int main() {
   const bool soft_reset = board::kRealtime && hal::watchdog::after_reset();  // its watchdog off
@@ -23,7 +25,9 @@ int main() {
   clock::init();
   hal::uart::init(F_CPU, board::kBaud);
   sei();
+  const char* settings_news = board::kSettings ? settings::boot() : nullptr;
   protocol::banner();
+  if (settings_news) reply::info_P(settings_news);  // defaults loaded, and why: once, after the banner
   if (board::kRealtime) realtime::boot(soft_reset);
   for (;;) {
     protocol::poll();

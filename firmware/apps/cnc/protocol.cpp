@@ -14,6 +14,7 @@
 #include "../../engine/path.h"
 #include "../../engine/planner.h"
 #include "../../services/heater.h"
+#include "../../services/settings.h"
 #include "gcode.h"
 #include "pending.h"
 #include "reply.h"
@@ -38,7 +39,9 @@ am::Command own_command;
 constexpr am::Command& command = board::kGcode ? pending::line.command : own_command;
 // What was accepted and waits for its turn: `command`, the G-code line's
 // action (gcode.h), or Marlin's M400 (motion to end).
-enum class Waiting : uint8_t { nothing, command, gcode };
+// A settings change (`$N=value`, `$RST=$`) waits for the machine at rest
+// with its line still in the reader.
+enum class Waiting : uint8_t { nothing, command, gcode, setting };
 Waiting waiting;
 // Set when received bytes were lost. The gap lies somewhere after the bytes
 // still in the receive ring, so every line completed from then on is refused
@@ -313,8 +316,14 @@ bool grbl_system(char* p) {
   }
   if (c != '$') return false;
   const char what = char(p[1] & ~0x20);
+  if (board::kSettings && (what == 'R' || (p[1] >= '0' && p[1] <= '9'))) {
+    hold(Waiting::setting);  // settings::change() once at rest
+    return true;
+  }
   if (p[1] == '\0') {
-    hal::uart::write_P(PSTR("[HLP:$ $I $G $X]\n"));
+    hal::uart::write_P(board::kSettings ? PSTR("[HLP:$ $$ $x=val $RST=$ $I $G $X]\n") : PSTR("[HLP:$ $I $G $X]\n"));
+  } else if (board::kSettings && p[1] == '$' && p[2] == '\0') {
+    settings::list();
   } else if (p[2] != '\0' || !(what == 'I' || what == 'X' || (board::kGcode && what == 'G') ||
                                 (board::kHoming && what == 'H'))) {
     error(code::bad_system_command, kNotHere);
@@ -374,7 +383,13 @@ void on_line(Reader::Line kind) {
 bool done_waiting() {
   switch (waiting) {
     case Waiting::command: return !board::kCommands || execute(command);
-    default: return !board::kGcode || gcode::execute();  // M400 too: the interpreter's wait
+    default:
+      if (board::kSettings && waiting == Waiting::setting) {
+        if (!path::at_rest()) return false;
+        settings::change(skip_blanks(reader.text()) + 1);
+        return true;
+      }
+      return !board::kGcode || gcode::execute();  // M400 too: the interpreter's wait
   }
 }
 

@@ -58,9 +58,14 @@ void write_state() {
     if (i) hal::uart::write(',');
     // Micrometres: units over units per metre (full steps per metre times
     // units per full step), in float (1 um in 10 m) unless they are units.
-    const float per_um = float(board::Axes::steps_per_m_at(i)) * board::Axes::units_per_full_step_at(i) * 1e-6f;
+    // With settings (board::kSettings) the scale is the steps/mm setting's.
+    const float per_um = board::kSettings ? float(gcode::steps_per_m(i)) * 1e-6f
+                                          : float(board::Axes::steps_per_m_at(i)) *
+                                                board::Axes::units_per_full_step_at(i) * 1e-6f;
     const float um = float(now[i]) / per_um;
-    am::format_fixed(buf, InMicrometres<board::Axes>::value ? now[i] : int32_t(um < 0 ? um - 0.5f : um + 0.5f), 3);
+    am::format_fixed(buf, InMicrometres<board::Axes>::value && !board::kSettings ? now[i]
+                                                                                : int32_t(um < 0 ? um - 0.5f : um + 0.5f),
+                     3);
     hal::uart::write(buf);
   }
   hal::uart::write_P(PSTR("|FS:"));

@@ -24,7 +24,8 @@ namespace code {
 constexpr uint8_t expected_letter = 1, bad_number = 2, bad_system_command = 3, line_overflow = 11,
                   unsupported = 20, modal_group = 21, undefined_feed = 22, axis_conflict = 24,
                   repeated_word = 25, no_axis_words = 26, bad_line_number = 27, value_missing = 28,
-                  invalid_target = 33, arc_radius = 34, no_offsets = 35, unused_words = 36, alarm_lock = 9;
+                  invalid_target = 33, arc_radius = 34, no_offsets = 35, unused_words = 36, alarm_lock = 9,
+                  homing_off = 5, step_rate = 12;
 // avrmotion's own
 constexpr uint8_t out_of_range = 100, comment_open = 101, several_actions = 102, arc_mixed = 103,
                   bad_mode = 104, no_modes = 105, mode_unavailable = 106, heater = 107,

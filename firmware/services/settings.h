@@ -1,0 +1,39 @@
+// The machine settings in the EEPROM (docs/settings.md), on a board that
+// declares them (board::kSettings): the table of core/board/settings.h with
+// the board's figures as defaults, applied to the G-code interpreter's
+// scale, the look-ahead planner's axis limits and junction deviation, the
+// homing service and the soft limits.
+//
+// Contract
+//   boot() once before the banner: reads the block and applies it, so
+//   nothing the banner's host sends meets the board's figures instead. A
+//   blank EEPROM (no tag) gives the board's defaults without a word; a
+//   block of another version or layout, or one whose checksum or values are
+//   wrong, gives the defaults and the text (in flash) of the one info line
+//   main() prints after the banner (grbl `[MSG:...]`, Marlin `echo:...`);
+//   nullptr otherwise. Nothing is written: the EEPROM keeps what it has
+//   until a setting is stored.
+//   list() prints grbl's `$N=value` lines of the settings in force.
+//   change(text) runs `N=value` or `RST=$` (the line after its `$`) and
+//   prints the whole answer (`ok`, or the refusal: nothing changed); the
+//   caller has waited for the machine to be at rest (path::at_rest()):
+//   a new steps/mm keeps the machine position in steps and moves its mm
+//   view (gcode::rescale()).
+//
+// Why
+//   The EEPROM is the record: every change is stored at once (grbl's way),
+//   so `$$` reads the block back instead of keeping a copy in RAM (the m32's
+//   2 KB hold the look-ahead ring and an arc's stack). Only the figures the
+//   machine runs on live in RAM, where they lived before (the interpreter's
+//   scale, the planner's axis table, limits::settings), all integer or
+//   float in the main loop: the step interrupt reads none of them.
+#pragma once
+#include <stdint.h>
+
+namespace settings {
+
+const char* boot();
+void list();
+void change(const char* text);
+
+}  // namespace settings
