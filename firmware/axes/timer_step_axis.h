@@ -40,7 +40,7 @@ struct TimerStepAxis {
   static void energise() { Enable::set(!EnableActiveLow); }
   static void release() { Enable::set(EnableActiveLow); }
   static void set_direction(bool forward) { Dir::set(forward); }
-  // The edges are the timer's: see step_engine.cpp.
+  // The edges are the timer's: see step_engine.cpp and step_vector.S.
   static void pulse_begin(bool) {}
   static void pulse_end() {}
 

@@ -1,10 +1,10 @@
 #include "step_engine.h"
 
-#include <avr/interrupt.h>
 #include <stddef.h>
 
 #include "../../hal/avr/step_timer.h"
 #include "../board.h"
+#include "step_vector.h"
 
 static_assert(board::kStepClock == hal::claim::timer1, "the step engine runs on Timer1: the board must claim it");
 
@@ -14,29 +14,25 @@ namespace {
 constexpr uint8_t kTimerAxes = board::Axes::timer_mask;
 using Queue = am::StepQueue<kQueueSize>;
 
-// The timer-pulsed STEP ends at the FOC strobe below, 24 cycles after its
-// match without padding (4 response + 3 JMP + 17 in the vector); the board
-// asks for kTimerPulseCycles. Three cycles per turn of the padding loop. A
-// segment's last step ends its pulse later, after the next segment's
-// period is set (36 cycles after the match at the earliest, when nothing is
-// chained; 51 when the next segment is): it needs no padding.
-constexpr uint8_t kPulsePathCycles = 24;
-constexpr uint8_t kPulsePadTurns =
-    board::kTimerPulseCycles > kPulsePathCycles ? (board::kTimerPulseCycles - kPulsePathCycles + 2) / 3 : 0;
-static_assert(board::kTimerPulseCycles <= 36, "the fast path's segment switch ends its pulse 36 cycles after the match");
-
-// The layout facts the assembly below relies on.
-static_assert(offsetof(am::StepSegment, count) == 0, "segment layout");
-static_assert(offsetof(am::StepSegment, compare) == 2, "segment layout");
-static_assert(offsetof(am::StepSegment, chain) == 9, "segment layout");
-static_assert(sizeof(am::StepSegment) == 11, "segment layout");
-static_assert(kBlockRing == 4, "block_slot lists four slots");
+// The facts the compare-A vector (step_vector.S) takes from step_vector.h.
+static_assert(offsetof(am::StepSegment, count) == STEP_SEGMENT_COUNT, "segment layout");
+static_assert(offsetof(am::StepSegment, compare) == STEP_SEGMENT_COMPARE, "segment layout");
+static_assert(offsetof(am::StepSegment, chain) == STEP_SEGMENT_CHAIN, "segment layout");
+static_assert(sizeof(am::StepSegment) == STEP_SEGMENT_SIZE, "segment layout");
+static_assert(sizeof(am::StepSegment::count) == 2 && sizeof(am::StepSegment::compare) == 2, "segment layout");
+static_assert(kQueueSize == STEP_QUEUE_SIZE, "queue size");
 static_assert(Queue::slots_offset() == 0, "queue layout");
+static_assert(STEP_QUEUE_SLOTS_BYTES == sizeof(am::StepSegment) * kQueueSize, "queue layout");
+static_assert(Queue::head_offset() == STEP_QUEUE_HEAD, "queue layout");
+static_assert(Queue::tail_offset() == STEP_QUEUE_TAIL, "queue layout");
+static_assert(hal::step_timer::kOc1aClear == STEP_OC1A_CLEAR, "OC1A modes");
+static_assert(hal::step_timer::kOc1aSet == STEP_OC1A_SET, "OC1A modes");
+static_assert(kBlockRing == 4, "block_slot lists four slots");
 
 }  // namespace
 }  // namespace engine
 
-// Shared with the assembly fast path, hence assembler names.
+// Shared with the compare-A vector (step_vector.S), hence assembler names.
 engine::Queue step_queue asm("step_queue");
 // Steps of the current segment after the one the next match makes.
 volatile uint16_t step_remaining asm("step_remaining");
@@ -237,152 +233,10 @@ __attribute__((optimize("Os"))) void start() {
 
 }  // namespace engine
 
-// The compare-A vector. Cycle counts are from the match: 4 of interrupt
-// response and 3 of the vector table's JMP come first. Steady cruise of the
-// timer-pulsed axis is the hot path and is written in assembly: ending the
-// pulse (after the board's pulse width), re-arming it and counting, where a
-// C handler would spend more than that saving and restoring the 17 registers
-// its calls may clobber. At a segment's last step it takes the next segment
-// straight from the ring if that one is marked `chain` (it continues the same
-// axis in the same direction with no long interval): the new compare lands
-// 45 cycles after the match, 60 before the next match at 160 kHz, and only
-// then does the step's pulse end (51 cycles: no padding), so the whole
-// switch takes about 96 cycles. The trapezoid's parts can be one step long
-// (two of them back to back at a run's end), and a switch that took longer
-// than the interval would start the next one late until a compare is
-// missed: a step the pins never make. Every other case ends the pulse,
-// restores the registers it used and jumps to a C handler, which then runs
-// exactly as if it were the vector.
-ISR(TIMER1_COMPA_vect, ISR_NAKED) {
-  asm volatile(
-      "push r24\n\t"                    // 2   9
-      "in r24, __SREG__\n\t"            // 1  10
-      "push r24\n\t"                    // 2  12
-      ".if %[timer_axis]\n\t"            //    (a board without one has no fast path)
-      "lds r24, step_fast\n\t"          // 2  14
-      "cpi r24, 2\n\t"                  // 1  15
-      "breq 4f\n\t"                     // 1 / 2 taken (17): the segment's last step
-      ".endif\n\t"
-      // A match that raised STEP: end the pulse now, whatever comes next.
-      "lds r24, step_armed\n\t"         // 2  18
-      "tst r24\n\t"                     // 1  19
-      "breq 3f\n\t"                     // 1  20
-      "ldi r24, %[clear]\n\t"           // 1  21
-      "sts %[tccr1a], r24\n\t"          // 2  23
-      ".if %[pad]\n\t"
-      "ldi r24, %[pad]\n\t"             // 1
-      "9: dec r24\n\t"                  // 1
-      "brne 9b\n\t"                     // 2, 1 on the last turn: 3 per turn
-      ".endif\n\t"
-      "ldi r24, %[force]\n\t"           // 1
-      "sts %[force_reg], r24\n\t"       // 2  26 + 3 pad: the pulse ends (38 on the Uno)
-      "3:\n\t"
-      "lds r24, step_fast\n\t"          // 2
-      "cpi r24, 1\n\t"                  // 1
-      "breq 2f\n\t"                     // 1 / 2 taken: a step with more to follow
-      "lds r24, step_coordinated\n\t"
-      "tst r24\n\t"
-      "brne 6f\n\t"
-      "pop r24\n\t"
-      "out __SREG__, r24\n\t"
-      "pop r24\n\t"
-      "jmp __vector_step_slow\n\t"
-      "6:\n\t"
-      "pop r24\n\t"
-      "out __SREG__, r24\n\t"
-      "pop r24\n\t"
-      "jmp __vector_step_coordinated\n\t"
-      // Another step of this segment follows: re-arm and count.
-      "2:\n\t"
-      "ldi r24, %[set]\n\t"             // 1
-      "sts %[tccr1a], r24\n\t"          // 2
-      "lds r24, step_remaining\n\t"     // 2
-      "subi r24, 1\n\t"                 // 1
-      "sts step_remaining, r24\n\t"     // 2
-      "lds r24, step_remaining+1\n\t"   // 2
-      "sbci r24, 0\n\t"                 // 1  Z: the 16-bit result is 0
-      "sts step_remaining+1, r24\n\t"   // 2
-      "brne 5f\n\t"                     // 1 / 2
-      "ldi r24, 2\n\t"                  // 1  the next match is the last step
-      "sts step_fast, r24\n\t"          // 2
-      "5:\n\t"
-      "pop r24\n\t"                     // 2
-      "out __SREG__, r24\n\t"           // 1
-      "pop r24\n\t"                     // 2
-      "reti\n\t"                        // 4
-      // The segment's last step; its pulse is high.
-      "4:\n\t"
-      "push r25\n\t"                    // 2  19
-      "push r30\n\t"                    // 2  21
-      "push r31\n\t"                    // 2  23
-      "lds r24, step_next_index\n\t"    // 2  25
-      "lds r25, step_queue+%[head]\n\t" // 2  27
-      "cp r24, r25\n\t"                 // 1  28
-      "breq 7f\n\t"                     // 1  29  nothing queued (2, 30)
-      "lds r30, step_next\n\t"          // 2  31
-      "lds r31, step_next+1\n\t"        // 2  33
-      "ldd r25, Z+9\n\t"                // 2  35  chain
-      "tst r25\n\t"                     // 1  36
-      "breq 7f\n\t"                     // 1  37  (2, 38)
-      "ldd r25, Z+3\n\t"                // 2  39
-      "sts %[ocr1ah], r25\n\t"          // 2  41
-      "ldd r25, Z+2\n\t"                // 2  43
-      "sts %[ocr1al], r25\n\t"          // 2  45  the new period is set
-      "ldi r25, %[clear]\n\t"           // 1  46
-      "sts %[tccr1a], r25\n\t"          // 2  48
-      "ldi r25, %[force]\n\t"           // 1  49
-      "sts %[force_reg], r25\n\t"       // 2  51  the pulse ends
-      "ldi r25, %[set]\n\t"             // 1
-      "sts %[tccr1a], r25\n\t"          // 2  the next one is armed
-      "sts step_queue+%[tail], r24\n\t" // 2  pop the finished segment
-      "subi r24, 0xFF\n\t"              // 1
-      "sts step_next_index, r24\n\t"    // 2
-      "ldd r24, Z+0\n\t"                // 2
-      "ldd r25, Z+1\n\t"                // 2
-      "sbiw r24, 1\n\t"                 // 2  count - 1, Z: a one-step segment
-      "sts step_remaining, r24\n\t"     // 2
-      "sts step_remaining+1, r25\n\t"   // 2
-      "ldi r24, 1\n\t"                  // 1
-      "brne 6f\n\t"                     // 1 / 2
-      "ldi r24, 2\n\t"                  // 1
-      "6:\n\t"
-      "sts step_fast, r24\n\t"          // 2
-      "adiw r30, %[slot]\n\t"           // 2  the slot after the new segment
-      "cpi r30, lo8(step_queue+%[ring])\n\t"  // 1
-      "ldi r25, hi8(step_queue+%[ring])\n\t"  // 1
-      "cpc r31, r25\n\t"                // 1
-      "brne 1f\n\t"                     // 1 / 2
-      "ldi r30, lo8(step_queue)\n\t"    // 1
-      "ldi r31, hi8(step_queue)\n\t"    // 1
-      "1:\n\t"
-      "sts step_next, r30\n\t"          // 2
-      "sts step_next+1, r31\n\t"        // 2
-      "pop r31\n\t"                     // 2
-      "pop r30\n\t"                     // 2
-      "pop r25\n\t"                     // 2
-      "rjmp 5b\n\t"                     // 2  about 96 to the end of RETI
-      // Nothing to chain: end the pulse (36 cycles at the earliest), then
-      // the C handler takes the queue.
-      "7:\n\t"
-      "ldi r25, %[clear]\n\t"           // 1  31
-      "sts %[tccr1a], r25\n\t"          // 2  33
-      "ldi r25, %[force]\n\t"           // 1  34
-      "sts %[force_reg], r25\n\t"       // 2  36  the pulse ends
-      "pop r31\n\t"
-      "pop r30\n\t"
-      "pop r25\n\t"
-      "pop r24\n\t"
-      "out __SREG__, r24\n\t"
-      "pop r24\n\t"
-      "jmp __vector_step_switch\n\t" ::[tccr1a] "n"(_SFR_MEM_ADDR(TCCR1A)),
-      [ocr1ah] "n"(_SFR_MEM_ADDR(OCR1AH)), [ocr1al] "n"(_SFR_MEM_ADDR(OCR1AL)),
-      [force_reg] "n"(_SFR_MEM_ADDR(HAL_FORCE_OC1A_REG)), [force] "n"(HAL_FORCE_OC1A_VALUE),
-      [clear] "n"(hal::step_timer::kOc1aClear), [set] "n"(hal::step_timer::kOc1aSet),
-      [head] "n"(engine::Queue::head_offset()), [tail] "n"(engine::Queue::tail_offset()),
-      [slot] "n"(sizeof(am::StepSegment)), [ring] "n"(sizeof(am::StepSegment) * engine::kQueueSize),
-      [pad] "n"(engine::kPulsePadTurns), [timer_axis] "n"(engine::kTimerAxes != 0));
-}
-
+// The C handlers. The compare-A vector itself is assembly, in
+// firmware/engine/step_vector.S: the timer-pulsed axis's fast path, which
+// jumps to one of these for everything else.
+//
 // The end of a timer-only segment that the vector could not continue: the
 // queue holds nothing more (a stop) or the next segment is not marked
 // `chain` (another move, which starts from rest). The pulse is not armed;
@@ -395,15 +249,15 @@ void __vector_step_switch() { engine::next_segment(); }
 
 // The general handlers: one more period of a long interval, or a step of any
 // axis. A timer-pulsed axis has had its whole pulse already (the match raised
-// it, the vector above ended it). For the other axes everything before
+// it, the vector ended it). For the other axes everything before
 // pulse_begin is the same on every step, so their edges trail the match by a
 // constant number of cycles; their step lines stay high for the bookkeeping
 // plus the board's pad, which together meet the drivers' minimum pulse width.
 // A coordinated segment asks its block's interpolator which axes step; it
 // has its own vector, so a one-axis step does not pay for the registers the
 // interpolator needs. (Named __vector_* so avr-gcc accepts the signal
-// attribute: a full interrupt prologue and a RETI, entered by the jumps
-// above.)
+// attribute: a full interrupt prologue and a RETI, entered by the vector's
+// jumps.)
 namespace engine {
 namespace {
 

@@ -23,7 +23,9 @@
 //   period must outlast the interrupt path that programs the next one: the
 //   axes' rate limits (protocol.cpp) keep step intervals above it. The
 //   timer-pulsed axis's cruise runs in an assembly fast path that also
-//   switches segments by itself (docs/step-engine.md).
+//   switches segments by itself: the compare-A vector, in its own file
+//   firmware/engine/step_vector.S, which jumps to the C handlers in
+//   step_engine.cpp for everything else (docs/step-engine.md).
 #pragma once
 #include <stdint.h>
 

@@ -4,6 +4,9 @@
 #pragma once
 #include <avr/io.h>
 
+// The macros are for assembly too (firmware/engine/step_vector.S includes
+// this file through hal/avr/family.h); the C++ is not.
+#ifndef __ASSEMBLER__
 namespace hal {
 namespace family {
 
@@ -14,6 +17,7 @@ constexpr uint8_t pin_io_address(char port) {
 
 }  // namespace family
 }  // namespace hal
+#endif
 
 #define HAL_UDR UDR
 #define HAL_UCSRA UCSRA
@@ -41,10 +45,12 @@ constexpr uint8_t pin_io_address(char port) {
 
 // PC2..PC5 carry JTAG while the JTAGEN fuse is programmed (the factory
 // setting); JTD must be written twice within four cycles to free them.
+#ifndef __ASSEMBLER__
 inline void hal_disable_jtag() {
   MCUCSR = _BV(JTD);
   MCUCSR = _BV(JTD);
 }
+#endif
 
 // Timer1 output compare A pin and its force-output-compare strobe.
 #define HAL_OC1A_PORT 'D'

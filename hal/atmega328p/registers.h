@@ -3,6 +3,9 @@
 #pragma once
 #include <avr/io.h>
 
+// The macros are for assembly too (firmware/engine/step_vector.S includes
+// this file through hal/avr/family.h); the C++ is not.
+#ifndef __ASSEMBLER__
 namespace hal {
 namespace family {
 
@@ -13,6 +16,7 @@ constexpr uint8_t pin_io_address(char port) {
 
 }  // namespace family
 }  // namespace hal
+#endif
 
 #define HAL_UDR UDR0
 #define HAL_UCSRA UCSR0A
@@ -37,7 +41,9 @@ constexpr uint8_t pin_io_address(char port) {
 #define HAL_TIMER1_MASK TIMSK1
 #define HAL_TIMER1_FLAGS TIFR1
 
+#ifndef __ASSEMBLER__
 inline void hal_disable_jtag() {}
+#endif
 
 // Timer1 output compare A pin and its force-output-compare strobe.
 #define HAL_OC1A_PORT 'B'

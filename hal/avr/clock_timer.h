@@ -1,6 +1,7 @@
 // Timer0 as a free-running time base: the 8-bit count (TCNT0) is the low
 // byte of the clock, its overflow interrupt extends it in software
-// (firmware/engine/clock.cpp defines the vector).
+// (firmware/engine/clock_vector.S defines the vector, hal/avr/clock_vector.h
+// names it).
 //
 // Contract
 //   ClockTimer<Claim> takes the board's clock claim (hal/avr/claims.h):
@@ -28,12 +29,12 @@
 #include <stdint.h>
 
 #include "claims.h"
+#include "clock_vector.h"
 #include "family.h"
 #if defined(__AVR_ATmega328P__)
 #include "pwm8.h"
 #endif
 
-#define HAL_CLOCK_VECT TIMER0_OVF_vect
 
 namespace hal {
 

@@ -65,7 +65,7 @@ inline void start_div8(uint16_t compare) {
 // without a match) and arms the next one ("set on match"). WGM11:10 are 0 in
 // CTC mode, so TCCR1A holds nothing but these bits.
 inline void arm_pulse() { TCCR1A = kOc1aSet; }
-// Ending a pulse is the step vector's own job (step_engine.cpp, in assembly:
+// Ending a pulse is the step vector's own job (firmware/engine/step_vector.S:
 // "clear" mode, then HAL_FORCE_OC1A_REG = HAL_FORCE_OC1A_VALUE).
 // Leaves OC1A driven low by "clear on match" (a match then changes nothing).
 inline void disarm_pulse() { TCCR1A = kOc1aClear; }

@@ -3,7 +3,7 @@
 # (firmware/engine/clock.cpp alone: the step engine's Timer1 vector would
 # collide with the pace's, so the engine part is not linked).
 set(APP_PARTS devices)
-list(APPEND app_sources ${CMAKE_CURRENT_SOURCE_DIR}/engine/clock.cpp)
+list(APPEND app_sources ${CMAKE_CURRENT_SOURCE_DIR}/engine/clock.cpp ${CMAKE_CURRENT_SOURCE_DIR}/engine/clock_vector.S)
 # The operator panel's image (a board with kOperatorPanel, firmware/apps/
 # lathe/operator.h) has no UART front end: neither the protocol nor the
 # UART driver (whose vectors would stay linked) goes into it.
