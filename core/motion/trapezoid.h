@@ -190,7 +190,10 @@ class BasicTrapezoidRuns {
     return true;
   }
 
-  StepRun next_run() {
+  // Not inlined: its caller keeps the runs in a global, whose fields it would
+  // reach by absolute address (4-byte LDS/STS) instead of through `this`
+  // (about 70 bytes on the AVR images).
+  [[gnu::noinline]] StepRun next_run() {
     if (!(left_[0] | left_[1])) {
       const uint32_t left = n_ - done_;
       if (left == 0) return StepRun{0, 0};
