@@ -111,8 +111,10 @@ Figures measure(const std::string& dir, const Scenario& s) {
   if (!f.ok || st.size() < 2) return f;
 
   // Every step of the whole move against the schedule, ramps included.
+  const sim::Ramp ramp{m.f_cpu(), f.clamped_to ? f.clamped_to : s.rate, s.accel};
   const std::vector<uint32_t> plan =
-      sim::planned_schedule(s.steps, sim::Ramp{m.f_cpu(), f.clamped_to ? f.clamped_to : s.rate, s.accel});
+      *s.also ? sim::smoothed_schedule(s.steps, ramp, sim::smoothing_level(s.steps, ramp.rate, s.max_step_rate))
+              : sim::planned_schedule(s.steps, ramp);
   const uint32_t fastest = *std::min_element(plan.begin() + 1, plan.end());
   uint64_t cruise_cycles = 0, cruise_steps = 0;
   for (size_t i = 1; i < st.size(); ++i) {

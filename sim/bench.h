@@ -21,6 +21,9 @@ struct Scenario {
   char pulse_port;  // a STEP pin whose pulse widths to measure, or 0
   uint8_t pulse_bit;
   const char* also = "";  // axes moving the same steps with `axis` (a coordinated diagonal)
+  // The board's kMaxStepRate, for the smoothing level of a coordinated
+  // diagonal (sim/schedule.h); unused for one axis.
+  uint32_t max_step_rate = 0;
 };
 
 struct Figures {

@@ -14,6 +14,10 @@
 //   step falls on event ceil((k N - h) / |delta_i|), no axis steps twice in
 //   one event, and p_i(N) = |delta_i| exactly: the block ends on its target.
 //
+//   start(delta, shift) runs the same line over N 2^shift events, every axis
+//   a minor in late phase (below): the smoothing of core/motion/amass.h,
+//   where the dominant axis steps on every 2^shift-th event.
+//
 //   start(delta, events, phase) does the same over a given number of events
 //   N >= max |delta| (each axis is then a "minor" of an outside clock): that
 //   is how axes ride along another interpolator's events (the linear axes of
@@ -59,35 +63,19 @@ class LineDda {
   static constexpr int32_t kInt32Min = -0x7FFFFFFFl - 1;
 
   // A block with N = max |delta| events and Bresenham (nearest) phase.
-  bool start(const int32_t (&delta)[Axes]) { return start(delta, 0, DdaPhase::nearest); }
+  bool start(const int32_t (&delta)[Axes]) { return begin(delta, 0, DdaPhase::nearest, 0); }
+
+  // The same line over N 2^shift events (shift 0: start(delta)), every axis
+  // a minor in late phase when shift > 0: the smoothing of
+  // core/motion/amass.h. The caller keeps N 2^shift within kMaxCount.
+  bool start(const int32_t (&delta)[Axes], uint8_t shift) {
+    return begin(delta, 0, shift ? DdaPhase::late : DdaPhase::nearest, shift);
+  }
 
   // A block over `events` events (0 = the dominant count). Returns false, and
   // leaves an empty block, when a delta is INT32_MIN or events is nonzero and
   // smaller than the largest |delta| or above kMaxCount.
-  bool start(const int32_t (&delta)[Axes], uint32_t events, DdaPhase phase) {
-    uint32_t dominant = 0;
-    uint8_t dirs = 0;
-    for (uint8_t i = 0; i < Axes; ++i) {
-      if (delta[i] == kInt32Min) return fail();
-      const uint32_t n = delta[i] < 0 ? uint32_t(-delta[i]) : uint32_t(delta[i]);
-      count_[i] = int32_t(n);
-      if (delta[i] > 0) dirs |= uint8_t(1u << i);
-      if (n > dominant) {
-        dominant = n;
-        dominant_ = i;
-      }
-    }
-    if (events == 0) events = dominant;
-    if (events < dominant || events > kMaxCount) return fail();
-    events_ = int32_t(events);
-    dirs_ = dirs;
-    phase_ = phase;
-    const int32_t first = events ? int32_t(events - 1 - (phase == DdaPhase::nearest ? events / 2 : 0)) : 0;
-    for (uint8_t i = 0; i < Axes; ++i) acc_[i] = first;
-    remaining_ = events;
-    classify();
-    return true;
-  }
+  bool start(const int32_t (&delta)[Axes], uint32_t events, DdaPhase phase) { return begin(delta, events, phase, 0); }
 
   // Puts the block at event `e` (0 <= e <= events()): the state it has after
   // e calls of next(). For resuming a block part-way and for tests; it
@@ -129,6 +117,33 @@ class LineDda {
   }
 
  private:
+  // The starts' common part: `events` 0 stands for the dominant count
+  // times 2^shift.
+  bool begin(const int32_t (&delta)[Axes], uint32_t events, DdaPhase phase, uint8_t shift) {
+    uint32_t dominant = 0;
+    uint8_t dirs = 0;
+    for (uint8_t i = 0; i < Axes; ++i) {
+      if (delta[i] == kInt32Min) return fail();
+      const uint32_t n = delta[i] < 0 ? uint32_t(-delta[i]) : uint32_t(delta[i]);
+      count_[i] = int32_t(n);
+      if (delta[i] > 0) dirs |= uint8_t(1u << i);
+      if (n > dominant) {
+        dominant = n;
+        dominant_ = i;
+      }
+    }
+    if (events == 0) events = dominant << shift;
+    if (events < dominant || events > kMaxCount) return fail();
+    events_ = int32_t(events);
+    dirs_ = dirs;
+    phase_ = phase;
+    const int32_t first = events ? int32_t(events - 1 - (phase == DdaPhase::nearest ? events / 2 : 0)) : 0;
+    for (uint8_t i = 0; i < Axes; ++i) acc_[i] = first;
+    remaining_ = events;
+    classify();
+    return true;
+  }
+
   // Compile-time unrolled walk over the minor axes (an axis that steps at
   // every event, e.g. the dominant one, and an idle axis cost one bit test).
   template <uint8_t I>

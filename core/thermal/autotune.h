@@ -68,7 +68,8 @@ class RelayAutotune {
     peak_ = trough_ = 0;
   }
 
-  uint8_t update(TempReading t) {
+  // Not inlined, for flash: as HeaterPid::update (core/thermal/pid.h).
+  [[gnu::noinline]] uint8_t update(TempReading t) {
     if (state_ != AutotuneState::running) return 0;
     const uint32_t now = now_;
     now_ += cfg_.period_ms;

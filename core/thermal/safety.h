@@ -97,7 +97,8 @@ class HeaterSafety {
  public:
   constexpr explicit HeaterSafety(const SafetyLimits& limits = SafetyLimits()) : limits_(limits) {}
 
-  uint8_t check(uint32_t now_ms, TempReading t, int16_t target, uint8_t requested) {
+  // Not inlined, for flash: as HeaterPid::update (core/thermal/pid.h).
+  [[gnu::noinline]] uint8_t check(uint32_t now_ms, TempReading t, int16_t target, uint8_t requested) {
     if (fault_ == HeaterFault::none) fault_ = evaluate(now_ms, t, target, requested);
     return fault_ == HeaterFault::none && t.ok() ? requested : 0;
   }

@@ -1,5 +1,6 @@
 #include "path.h"
 
+#include "../../core/motion/amass.h"
 #include "../../core/motion/feed_hold.h"
 #include "../../core/motion/path_planner.h"
 #include "../../core/motion/trapezoid.h"
@@ -20,6 +21,11 @@ using Plan = am::PathPlanner<kAxes, board::kPathBlocks>;
 // (trapezoid.h keeps its runs as long as the curvature allows), time enough
 // to plan the next.
 constexpr uint8_t kLowWater = 4;
+// A coordinated block runs up to 8 events per dominant step at low rates
+// (core/motion/amass.h), its events at most at a quarter of the board's
+// step-rate limit (grbl's AMASS goes to 16 kHz): the coordinated handler's
+// load at that rate (docs/step-engine.md).
+constexpr uint32_t kSmoothedEventRate = board::kMaxStepRate / 4;
 // With a feed hold, cruise runs of under 2^15 ticks (2 ms at 16 MHz): the
 // stop starts after what the engine has queued, at most kQueueSize of them.
 constexpr uint8_t kHoldCruiseHalvings = 2;
@@ -102,13 +108,20 @@ bool take_now() {
   return starting && clock::reached(last_add + clock::ms(kStartDelayMs));
 }
 
-void begin(const am::TrapezoidBlock& b, const planner::Steps& steps) {
+// A coordinated block's interpolator, and its profile in the finer events
+// of its smoothing level (core/motion/amass.h) where it has minor axes.
+engine::Dda* interpolate(am::TrapezoidBlock& b, const planner::Steps& steps) {
+  engine::Dda* dda = engine::begin_block(serial);
+  const uint8_t level = am::amass::level(b.events, uint32_t(b.cruise), kSmoothedEventRate);
+  dda->start(steps, level);
+  am::amass::scale(b, level);
+  return dda;
+}
+
+// Starts block `b` (smoothed in place: the caller's copy is spent).
+void begin(am::TrapezoidBlock& b, const planner::Steps& steps) {
   const uint8_t mask = planner::mask_of(steps);
-  engine::Dda* dda = nullptr;
-  if (mask & (mask - 1)) {
-    dda = engine::begin_block(serial);
-    dda->start(steps);
-  }
+  engine::Dda* dda = (mask & (mask - 1)) ? interpolate(b, steps) : nullptr;
   if (board::kRealtime) {
     runs.shorten_cruise(kHoldCruiseHalvings);
     stop.begin(b);
@@ -135,7 +148,8 @@ bool take() {
   const Block* b = plan().take();
   // A stop that runs on from the block before enters as much slower.
   const float entry = board::kRealtime && holding == Hold::stopping ? b->entry * carried : b->entry;
-  begin(am::TrapezoidBlock{b->events, entry, b->cruise, b->exit, b->accel}, b->steps);
+  am::TrapezoidBlock block{b->events, entry, b->cruise, b->exit, b->accel};
+  begin(block, b->steps);
   plan().done();
   return true;
 }

@@ -54,8 +54,9 @@ Refusal check(const Move& move) {
   // the move is queued) must fit.
   for (uint8_t i = 0; i < board::Axes::count; ++i) {
     for (uint8_t at_rest = 0; at_rest < 2; ++at_rest) {
-      const int64_t end = int64_t(positions[i]) + board::Axes::units_for(i, move.steps[i], at_rest);
-      if (end < -int64_t(0x80000000) || end > int64_t(0x7FFFFFFF)) return Refusal::position_range;
+      int32_t end;
+      if (__builtin_add_overflow(positions[i], board::Axes::units_for(i, move.steps[i], at_rest), &end))
+        return Refusal::position_range;
     }
   }
   return limits::kSwitches && limits::outside(move) ? Refusal::soft_limit : Refusal::none;

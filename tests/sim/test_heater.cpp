@@ -341,9 +341,19 @@ TEST(Heater, StuckOnIsMaxtempAtTheCrossing) {
   std::string line;
   const double error_at = h.line_time("Error:", &line);
   EXPECT_EQ(line, "Error:MAXTEMP triggered, heater halted until reset");
-  EXPECT_NEAR(error_at, crossing, 0.3);
+  // The reading may be up to 1.5 C high there: the table's error near 275 C
+  // (0.4 C), a 12-bit count (0.45 C) and the plant's ADC noise that 16
+  // samples do not average away (up to a 10-bit count, 0.6 C), so the
+  // firmware may trip once the plant's thermistor is above 273.5 C (where
+  // in that band depends on the phase of the sampling, which moves with the
+  // code); and at the latest 0.3 s (two sample periods and the filter)
+  // after 275 C.
+  const double earliest = h.crossed_s(273.5, true);
+  EXPECT_GE(error_at, earliest);
+  EXPECT_LE(error_at, crossing + 0.3);
   EXPECT_DOUBLE_EQ(h.last_high_s(), 0.0);  // the firmware never drove it (above target)
-  std::printf("maxtemp: plant at 275 C at %.2f s, MAXTEMP at %.2f s\n", crossing, error_at);
+  std::printf("maxtemp: plant at 273.5 C at %.2f s, at 275 C at %.2f s, MAXTEMP at %.2f s\n", earliest, crossing,
+              error_at);
 }
 
 // M303 from 25 C: Marlin's relay at 200 C over 3 cycles, its Ziegler-Nichols
