@@ -75,6 +75,15 @@ int32_t spindle_count();  // net spindle counts since init()
 uint16_t lost_counts();   // counts the decoder could not be sure of (spindle_encoder.h)
 
 bool set_encoder(bool quadrature, uint16_t lines);
+
+// The DC-servo leadscrew only (servo/leadscrew_servo.cpp, a board with
+// kServoLeadscrew): reference() is where the last pass or move was meant to
+// end (the base of the next pass, and the front end's "here"); last_slip()
+// that end's target minus where the carriage is (final once idle: the
+// motor has stopped). The stepper's carriage always ends where it was
+// meant to.
+int32_t reference();
+int32_t last_slip();
 am::Machine machine();
 
 }  // namespace leadscrew
