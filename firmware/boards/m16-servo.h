@@ -69,6 +69,7 @@ constexpr bool kSpindleQuadrature = false;
 // 164 leadscrew rpm) at full duty, time constant 13.46 ms. The feedforward
 // uses the gain: duty = speed / 2.0866.
 constexpr uint32_t kServoGain_e4 = 20866;  // counts/s per duty count, x 10^4
+constexpr uint32_t kServoTauUs = 13461;    // 1 / 74.29 s: a move stops its drive w tau before its end
 // The PID (core/lathe/servo_pid.h): the seed's tuning for this plant
 // (60 degrees phase margin, crossover about 132 rad/s), sampled every 16th
 // Timer1 overflow: 16 x 1024 cycles, 1.024 ms at 16 MHz.

@@ -70,6 +70,11 @@ constexpr uint32_t kMoveFf_q8 = uint32_t(uint64_t(F_CPU) * 10000 * 256 / (uint64
 constexpr uint32_t kVelPerRate = uint32_t(uint64_t(kSampleCycles) * 65536 / 1000);  // x rate / (F_CPU / 1000)
 static_assert(uint64_t(board::kLeadscrewMaxRate) * kVelPerRate < (1ull << 32), "the top rate's velocity fits");
 static_assert(kMoveAccel > 0, "an acceleration of at least one count / 2^16 per sample^2");
+// A move's end: the drive stops where the motor, coasting, comes to rest on
+// the destination: a first-order motor at w counts/s coasts w tau further,
+// w = F_CPU / P for a motor count period of P cycles (the last one, or the
+// time since it if longer): coast = kCoastCycles_q8 / P, counts x 256.
+constexpr uint32_t kCoastCycles_q8 = board::kServoTauUs * (F_CPU / 1000000ul) * 256;
 // The motor stands once the encoder has been quiet this many samples.
 constexpr uint8_t kQuietSamples = 20;
 
@@ -104,6 +109,8 @@ int32_t traj_q8_;       // the trajectory's point, counts x 256
 int32_t vel_q16_;       // its speed, counts / 2^16 per sample
 int32_t max_vel_q16_;
 bool traj_done_;
+uint32_t motor_time_;    // fine time of the last motor count
+uint32_t motor_period_;  // cycles between the last two
 
 // The main loop's rpm.
 constexpr uint8_t kRpmSamples = 8;
@@ -196,6 +203,15 @@ __attribute__((noinline)) void pass_sample() {
 }
 
 __attribute__((noinline)) void move_sample() {
+  const int32_t here = pos_;
+  uint32_t period = motor_period_;
+  const uint32_t since = fine_now() - motor_time_;
+  if (since > period) period = since;
+  const int32_t coast = period < kStalled ? int32_t(kCoastCycles_q8 / period) : 0;
+  if ((move_dest_ - here) * dir_ * 256 <= coast) {
+    drive_off(stop_ == Stop::none ? Stop::done : stop_, move_dest_);  // it coasts onto the destination
+    return;
+  }
   if (!traj_done_) {
     const int32_t remaining = (move_dest_ * 256 - traj_q8_) * dir_;  // counts x 256, >= 0
     const int32_t v8 = vel_q16_ >> 8;
@@ -254,6 +270,9 @@ ISR(INT0_vect) {
   using namespace leadscrew;
   pos_ = pos_ + dir_;
   quiet_ = 0;
+  const uint32_t t = fine_now();
+  motor_period_ = t - motor_time_;
+  motor_time_ = t;
 }
 
 // The spindle: one channel, every falling edge a forward count.
@@ -356,6 +375,7 @@ Refusal move_to(int32_t steps, uint32_t rate) {
     // counts/s -> counts / 2^16 per sample
     max_vel_q16_ = int32_t(rate * kVelPerRate / uint32_t(F_CPU / 1000));
     traj_done_ = false;
+    motor_period_ = kStalled;  // at rest
     start_drive(steps > here ? 1 : -1);
     state_ = State::moving;
   }
