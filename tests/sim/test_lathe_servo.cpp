@@ -10,10 +10,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "lathe_rig.h"
+#include "plot_lathe.h"
 
 namespace {
 
@@ -29,7 +32,11 @@ constexpr int kSigma = -1;  // a right-hand thread towards the chuck: -Z
 constexpr double kFollowBound = 6;    // counts (24.4 um) of carriage, either way, every sample of a pass
 constexpr double kPhaseBound = 6;     // counts, the second pass against the first's helix
 constexpr double kReentryBound = 2;   // counts, the second pass at its index (the retract's slip)
-constexpr uint64_t kLimitBound = 2500;  // cycles from the switch to ENABLE low for good
+// Cycles from the switch to ENABLE low for good: the switch is read every
+// PWM period (1024 cycles), behind at most one other vector (INT1 343, INT0
+// 268, the UART 172 cycles at most, as the test prints them), plus the
+// overflow vector's own entry.
+constexpr uint64_t kLimitBound = 1600;
 
 // The spindle's continuous angle in counts at a cycle: its transitions
 // (two per line, single channel) interpolated linearly.
@@ -53,7 +60,10 @@ struct PassFigures {
   double max_lag = 0, max_lead = 0;  // carriage behind / ahead of the helix, counts
   double at_index = 0;           // the carriage against the helix at the index (lag, counts)
   double worst = 0;              // max(|lag|, |lead|)
+  std::vector<sim::LathePlotPoint> plot;  // every servo log entry from the index to `until`
 };
+
+constexpr double kMmPerCount = 3.175 / 780;
 
 // The pass after `armed` on the helix base + sigma lambda s: its index (as
 // the firmware finds it), its end (the first count whose target
@@ -84,9 +94,13 @@ PassFigures measure(const ServoRig& rig, uint64_t armed, double base, int64_t en
   const uint64_t last = f.end_cycle ? f.end_cycle : until;
   bool first = true;
   for (const auto& e : rig.servo->log()) {
-    if (e.cycle < f.index_cycle || e.cycle > last) continue;
+    if (e.cycle < f.index_cycle || e.cycle > until) continue;
     const double s = (spindle_phase_at(*rig.spindle, e.cycle) - double(f.index_phase)) / 2;
-    const double lag = kSigma * (base + kSigma * kLambda * s - e.position);
+    const double helix = base + kSigma * kLambda * s;
+    const double lag = kSigma * (helix - e.position);
+    f.plot.push_back({double(e.cycle) / rig.m->f_cpu(), helix * kMmPerCount, e.position * kMmPerCount,
+                      lag * kMmPerCount * 1000});
+    if (e.cycle > last) continue;
     if (first) f.at_index = lag;
     first = false;
     f.max_lag = std::max(f.max_lag, lag);
@@ -133,6 +147,20 @@ TEST(LatheServo, ThreadPassFollowsAndTheSecondPassReentersTheHelix) {
   const long slip1 = std::atol(field(st1, "slip").c_str());
   EXPECT_NEAR(double(end - slip1), x_rest1, 0.51) << st1;
 
+  // The picture (docs/lathe.md): written where AVRMOTION_PLOT_DIR says.
+  {
+    std::ostringstream svg;
+    sim::write_lathe_plot(svg, "m16-servo: G33 Z-10 K1, pass 1 (300 rpm, 40-slot spindle, DC servo)", p1.plot);
+    EXPECT_NE(svg.str().find("data-kind='carriage'"), std::string::npos);
+    EXPECT_NE(svg.str().find("data-kind='error'"), std::string::npos);
+    if (const char* dir = std::getenv("AVRMOTION_PLOT_DIR")) {
+      const std::string path = std::string(dir) + "/lathe-servo-pass.svg";
+      EXPECT_TRUE(sim::write_lathe_plot(path, "m16-servo: G33 Z-10 K1, pass 1 (300 rpm, 40-slot spindle, DC servo)",
+                                        p1.plot))
+          << path;
+    }
+  }
+
   // Retract to where the pass began, then the second pass from there.
   ASSERT_EQ(rig.send("G0 Z0"), "ok");
   ASSERT_TRUE(rig.wait_idle(3));
@@ -155,6 +183,137 @@ TEST(LatheServo, ThreadPassFollowsAndTheSecondPassReentersTheHelix) {
   // retract's slip as its initial error.
   EXPECT_LE(p2.worst, kPhaseBound);
   EXPECT_LE(std::fabs(p2.at_index), kReentryBound);
+}
+
+}  // namespace
+
+namespace {
+
+// The spindle from rest (at t0) to 300 rpm over 1 s, then at speed.
+sim::SpindleParams running_from(double t0) {
+  sim::SpindleParams p;
+  p.lines = 40;
+  p.profile = {{t0, 0}, {t0 + 1, 300}};
+  return p;
+}
+
+TEST(LatheServo, LimitSwitchStopsThePwmAtOnce) {
+  ServoRig rig(running_from(0.2));
+  ASSERT_EQ(rig.send("G33 Z-30 K1"), "ok");
+  rig.run_until(2.0);
+  const std::string running = rig.status();
+  EXPECT_EQ(field(running, "state"), "locked") << running;
+  // The status line's following error: the follower's target (a staircase
+  // up to lambda behind the interpolated one) minus the count.
+  const long err = std::atol(field(running, "err").c_str());
+  EXPECT_LE(std::labs(err), long(kFollowBound + kLambda + 1)) << running;
+  ASSERT_GT(rig.enable->size(), 100u) << "the PWM never ran";
+
+  const uint64_t hit = rig.m->cycles() + 12345;  // not on a PWM period's edge
+  rig.run_until(double(hit) / rig.m->f_cpu());
+  const double x_hit = rig.servo->position();
+  rig.m->hold_input('D', 7, false);
+  rig.run_until(double(hit) / rig.m->f_cpu() + 0.1);
+  // ENABLE's last edge after the switch must be a fall, within the bound,
+  // and nothing after it.
+  uint64_t off = hit;
+  size_t rises_after = 0;
+  for (const auto& e : *rig.enable) {
+    if (e.cycle < hit) continue;
+    if (e.level) ++rises_after;
+    else off = e.cycle;
+  }
+  const auto& edges = *rig.enable;
+  ASSERT_FALSE(edges.empty());
+  EXPECT_FALSE(edges.back().level) << "ENABLE left high";
+  const uint64_t stop_cycles = off - hit;
+  std::printf("limit switch: ENABLE low for good %llu cycles (%.1f us) after it, %zu rises after it; "
+              "the motor coasted %.1f counts\n",
+              (unsigned long long)stop_cycles, stop_cycles * 1e6 / rig.m->f_cpu(), rises_after,
+              std::fabs(rig.servo->position() - x_hit));
+  EXPECT_LE(stop_cycles, kLimitBound);
+  // The vectors' longest runs (entry to RETI): the switch is read every
+  // overflow (1024 cycles), so the worst case is a period plus the longest
+  // vector it may wait behind.
+  for (const auto& v : rig.m->isr_stats())
+    std::printf("  vector %d: %llu entries, longest %llu cycles\n", v.first, (unsigned long long)v.second.count,
+                (unsigned long long)v.second.max_cycles);
+  std::printf("  stack: %u B of %u B free\n", rig.m->stack_bytes(), rig.m->free_ram());
+  EXPECT_LE(rises_after, 1u);  // at most the period already begun when the switch closed
+  ASSERT_TRUE(rig.wait_idle(1));
+  const std::string st = rig.status();
+  EXPECT_EQ(field(st, "last"), "limit") << st;
+  EXPECT_EQ(rig.send("G33 Z-30 K1"), "error: limit switch hit");
+  EXPECT_EQ(rig.send("G0 Z5"), "error: limit switch hit");
+  rig.m->hold_input('D', 7, true);
+  EXPECT_EQ(rig.send("G0 Z-1"), "ok");
+}
+
+TEST(LatheServo, PwmZeroIsTrulyOff) {
+  // Armed with the spindle at rest: the bridge's enable never rises.
+  sim::SpindleParams p;
+  p.lines = 40;
+  p.profile = {{1.0, 0}, {2.0, 300}, {3.0, 300}, {4.0, 0}};  // 10 turns
+  ServoRig rig(p);
+  ASSERT_EQ(rig.send("G33 Z-30 K1"), "ok");
+  rig.run_until(0.9);
+  EXPECT_EQ(field(rig.status(), "state"), "armed");
+  for (const auto& x : *rig.enable) EXPECT_FALSE(x.level) << "ENABLE high at cycle " << x.cycle << " before the pass";
+  // The spindle turns 10 turns and stops: the pass follows it to rest (the
+  // carriage ahead of the target while the spindle slows: duty 0), then STOP.
+  rig.run_until(4.6);
+  const std::string st = rig.status();
+  EXPECT_EQ(field(st, "state"), "locked") << st;
+  ASSERT_EQ(rig.send("STOP"), "ok");
+  const uint64_t stopped = rig.m->cycles();
+  ASSERT_TRUE(rig.wait_idle(1));
+  rig.run_until(5.5);
+  // Every high pulse on ENABLE lasts 2 cycles or more: fast PWM at OCR1A = 0
+  // still raises it for one cycle a period (simavr models that spike: a
+  // build that leaves OC1A connected at duty 0 fails here with 1-cycle
+  // pulses); the firmware disconnects OC1A instead. Periods of 1024 cycles
+  // or more with ENABLE low are the samples at duty 0. A rise and fall in
+  // the same cycle (no time high) is simavr re-arming the compare unit when
+  // OCR1A changes (the hardware double-buffers OCR1A in PWM modes): counted
+  // apart, it moves no motor.
+  const auto& e = *rig.enable;
+  uint64_t shortest = ~0ull, zero_periods = 0, pulses = 0, zero_width = 0;
+  for (size_t i = 1; i < e.size(); ++i) {
+    if (e[i - 1].level && !e[i].level) {
+      const uint64_t w = e[i].cycle - e[i - 1].cycle;
+      if (w == 0) {
+        ++zero_width;
+        continue;
+      }
+      shortest = std::min<uint64_t>(shortest, w);
+      ++pulses;
+    }
+    if (!e[i - 1].level && e[i].level) zero_periods += (e[i].cycle - e[i - 1].cycle) / 1024;
+  }
+  size_t after_stop = 0;
+  for (const auto& x : e) after_stop += x.cycle > stopped + 1024;
+  std::printf("PWM: %llu pulses, the shortest %llu cycles (%llu of no width: OCR1A writes); %llu periods at duty 0 "
+              "between them; %zu edges after STOP\n",
+              (unsigned long long)pulses, (unsigned long long)shortest, (unsigned long long)zero_width,
+              (unsigned long long)zero_periods, after_stop);
+  EXPECT_GT(pulses, 1000u);
+  EXPECT_GE(shortest, 2u);
+  EXPECT_GT(zero_periods, 0u) << "the pass never asked for duty 0: the test proves nothing";
+  EXPECT_EQ(after_stop, 0u);
+  ASSERT_FALSE(e.empty());
+  EXPECT_FALSE(e.back().level);
+}
+
+TEST(LatheServo, FrontEndRefusals) {
+  ServoRig rig(running_from(10));
+  EXPECT_EQ(rig.send("ENCODER C600 E4"), "error: E4 needs INT0, the servo's");
+  EXPECT_EQ(rig.send("ENCODER C40 E1"), "ok");
+  EXPECT_EQ(rig.send("G33 Z-10 K1100"), "error: 64 or more counts per count");
+  EXPECT_EQ(rig.send("G33 Z0 K1"), "error: Z is here");
+  const std::string st = rig.status();
+  EXPECT_EQ(field(st, "state"), "idle") << st;
+  EXPECT_EQ(field(st, "slip"), "0") << st;
+  EXPECT_EQ(field(st, "lost"), "0") << st;
 }
 
 }  // namespace

@@ -6,9 +6,9 @@
 // spindle, timestamps the count and runs the follower; Timer1's overflow
 // (every 1024 cycles, the 10-bit PWM's period) reads the limit switch and,
 // every kServoSampleOverflows-th time, runs the sample: the target, the PID,
-// the duty. The main loop starts and ends passes and moves with interrupts
-// off, and measures the spindle's rpm. Vectors do not nest, so each one
-// sees the others' work whole.
+// the duty, with interrupts on (below). The main loop starts and ends passes
+// and moves with interrupts off, and measures the spindle's rpm. The other
+// vectors do not nest.
 //
 // A pass: armed until the index (as the stepper's), then locked: every
 // sample the target is the follower's floor(+-lambda (s - phi)) from the
@@ -87,6 +87,7 @@ int8_t dir_ = 1;        // the bridge's direction (and the count's), +1 or -1
 bool driving_;          // the bridge is driven (the PID runs); else off, coasting or idle
 uint8_t quiet_;         // samples since the last encoder count
 uint8_t sample_div_ = board::kServoSampleOverflows;
+bool in_sample_;
 uint32_t overflows_;    // Timer1 overflows: the fine time's upper part
 
 int32_t reference_;     // where the last pass or move was meant to end
@@ -181,37 +182,59 @@ void halt(Stop why) {
   drive_off(why, state_ == State::armed ? reference_ : target_now());
 }
 
+// The sample runs with interrupts on (it takes up to about 2300 cycles,
+// more than two PWM periods: the overflow, the encoders and the UART must
+// not wait for it). What the vectors write is read in one go with
+// interrupts off, and the duty is applied only if nothing stopped the drive
+// meanwhile (the limit switch, read by the overflow vector nesting in it).
+// Only this function and the main loop (which cannot run during it) touch
+// the PID and the move's trajectory.
+
+// Sets the duty unless the drive was stopped meanwhile. Interrupts on.
+void apply(uint16_t duty) {
+  cli();
+  if (driving_) set_duty(duty);
+  sei();
+}
+
+// Stops the drive at the end of a pass or move unless it was already.
+void finish(Stop why, int32_t target) {
+  cli();
+  if (driving_) drive_off(why, target);
+  sei();
+}
+
 __attribute__((noinline)) void pass_sample() {
+  cli();
   const int32_t target = pass_target();
-  if (has_end_ && (dir_ > 0 ? target >= end_ : target <= end_)) {
-    drive_off(Stop::length, end_);
-    return;
-  }
+  const int32_t here = pos_;
+  const uint32_t period = count_period_;
+  const uint32_t elapsed = fine_now() - last_count_time_;
+  sei();
+  if (has_end_ && (dir_ > 0 ? target >= end_ : target <= end_)) return finish(Stop::length, end_);
   uint8_t frac = 0;
   uint16_t ff = 0;
-  const uint32_t period = count_period_;
   if (period != 0 && period < kStalled) {
-    const uint32_t elapsed = fine_now() - last_count_time_;
     frac = elapsed < period ? uint8_t((elapsed << 8) / period) : 255;
     const uint32_t f = ff_k_ / (elapsed > period ? elapsed : period);
     ff = uint16_t(f > am::ServoPid::kMaxDuty ? am::ServoPid::kMaxDuty : f);
   }
   // In the pass's direction: e = dir (target + dir lambda frac - pos).
   const int32_t ahead = int32_t((uint32_t(lam_q8_) * frac) >> 8);
-  const int32_t e = (target - pos_) * 256 * dir_ + ahead;
-  set_duty(pid.update(e, ff));
+  const int32_t e = (target - here) * 256 * dir_ + ahead;
+  apply(pid.update(e, ff));
 }
 
 __attribute__((noinline)) void move_sample() {
+  cli();
   const int32_t here = pos_;
   uint32_t period = motor_period_;
   const uint32_t since = fine_now() - motor_time_;
+  sei();
   if (since > period) period = since;
   const int32_t coast = period < kStalled ? int32_t(kCoastCycles_q8 / period) : 0;
-  if ((move_dest_ - here) * dir_ * 256 <= coast) {
-    drive_off(stop_ == Stop::none ? Stop::done : stop_, move_dest_);  // it coasts onto the destination
-    return;
-  }
+  const Stop why = stop_ == Stop::none ? Stop::done : stop_;  // a disengage() keeps its reason
+  if ((move_dest_ - here) * dir_ * 256 <= coast) return finish(why, move_dest_);  // it coasts onto the end
   if (!traj_done_) {
     const int32_t remaining = (move_dest_ * 256 - traj_q8_) * dir_;  // counts x 256, >= 0
     const int32_t v8 = vel_q16_ >> 8;
@@ -232,15 +255,12 @@ __attribute__((noinline)) void move_sample() {
       traj_q8_ += step * dir_;
     }
   }
-  if (traj_done_ && (move_dest_ - pos_) * dir_ <= 0) {
-    drive_off(stop_ == Stop::none ? Stop::done : stop_, move_dest_);
-    return;
-  }
   const uint16_t ff = uint16_t((uint32_t(vel_q16_ >> 4) * kMoveFf_q8) >> 20);
-  const int32_t e = (traj_q8_ - pos_ * 256) * dir_;
-  set_duty(pid.update(e, ff > am::ServoPid::kMaxDuty ? am::ServoPid::kMaxDuty : ff));
+  const int32_t e = (traj_q8_ - here * 256) * dir_;
+  apply(pid.update(e, ff > am::ServoPid::kMaxDuty ? am::ServoPid::kMaxDuty : ff));
 }
 
+// Interrupts on.
 void sample() {
   const State s = state_;
   if (s == State::locked) {
@@ -249,7 +269,9 @@ void sample() {
     if (driving_) {
       move_sample();
     } else if (++quiet_ >= kQuietSamples) {
-      state_ = State::idle;  // the motor stands
+      cli();
+      if (!driving_ && quiet_ >= kQuietSamples) state_ = State::idle;  // the motor stands
+      sei();
     }
   }
 }
@@ -287,10 +309,7 @@ ISR(INT1_vect) {
     follower.edge(true);
   } else if (s == State::armed) {
     const bool high = board::SpindleIndex::read();
-    if (high && !index_was_high_) {
-      state_ = State::locked;  // this count is s = 0
-      pid.reset();
-    }
+    if (high && !index_was_high_) state_ = State::locked;  // this count is s = 0 (the PID is fresh from engage())
     index_was_high_ = high;
   }
 }
@@ -303,7 +322,13 @@ ISR(TIMER1_OVF_vect) {
   if (!board::LimitSwitch::read() && driving_) halt(Stop::limit);
   if (--sample_div_ == 0) {
     sample_div_ = board::kServoSampleOverflows;
-    sample();
+    if (!in_sample_) {  // never false unless a sample took 16 periods
+      in_sample_ = true;
+      sei();
+      sample();
+      cli();
+      in_sample_ = false;
+    }
   }
 }
 
