@@ -60,7 +60,7 @@ struct PassFigures {
   double max_lag = 0, max_lead = 0;  // carriage behind / ahead of the helix, counts
   double at_index = 0;           // the carriage against the helix at the index (lag, counts)
   double worst = 0;              // max(|lag|, |lead|)
-  std::vector<sim::LathePlotPoint> plot;  // every servo log entry from the index to `until`
+  std::vector<sim::LathePlotPoint> plot;  // every servo log entry from the index to the end
 };
 
 constexpr double kMmPerCount = 3.175 / 780;
@@ -94,13 +94,12 @@ PassFigures measure(const ServoRig& rig, uint64_t armed, double base, int64_t en
   const uint64_t last = f.end_cycle ? f.end_cycle : until;
   bool first = true;
   for (const auto& e : rig.servo->log()) {
-    if (e.cycle < f.index_cycle || e.cycle > until) continue;
+    if (e.cycle < f.index_cycle || e.cycle > last) continue;
     const double s = (spindle_phase_at(*rig.spindle, e.cycle) - double(f.index_phase)) / 2;
     const double helix = base + kSigma * kLambda * s;
     const double lag = kSigma * (helix - e.position);
     f.plot.push_back({double(e.cycle) / rig.m->f_cpu(), helix * kMmPerCount, e.position * kMmPerCount,
                       lag * kMmPerCount * 1000});
-    if (e.cycle > last) continue;
     if (first) f.at_index = lag;
     first = false;
     f.max_lag = std::max(f.max_lag, lag);
@@ -111,25 +110,27 @@ PassFigures measure(const ServoRig& rig, uint64_t armed, double base, int64_t en
   return f;
 }
 
-// The spindle for two passes: from rest to 300 rpm over 1 s, 2 s at speed,
-// back to rest over 1 s (15 turns), from t0 and again from t1.
-sim::SpindleParams two_runs(double t0, double t1) {
+// The spindle for two passes: from rest to 300 rpm over 1 s, `hold` s at
+// speed, back to rest over 1 s (5 hold + 5 turns), from t0 and again from t1.
+sim::SpindleParams two_runs(double t0, double t1, double hold = 2) {
   sim::SpindleParams p;
   p.lines = 40;
-  p.profile = {{t0, 0}, {t0 + 1, 300}, {t0 + 3, 300}, {t0 + 4, 0},
-               {t1, 0}, {t1 + 1, 300}, {t1 + 3, 300}, {t1 + 4, 0}};
+  p.profile = {{t0, 0}, {t0 + 1, 300}, {t0 + 1 + hold, 300}, {t0 + 2 + hold, 0},
+               {t1, 0}, {t1 + 1, 300}, {t1 + 1 + hold, 300}, {t1 + 2 + hold, 0}};
   return p;
 }
 
 TEST(LatheServo, ThreadPassFollowsAndTheSecondPassReentersTheHelix) {
-  ServoRig rig(two_runs(0.3, 7.0));
-  ASSERT_EQ(rig.send("G33 Z-10 K1"), "ok");
+  // 25 mm of a 1 mm thread: 25 spindle turns after the index (1000 counts),
+  // 6142 motor counts (25000 um x 780 / 3175, rounded); the spindle turns
+  // 30 (1 s up to 300 rpm, 5 s at speed, 1 s down), the pass ends at speed.
+  ServoRig rig(two_runs(0.3, 12.5, 5));
+  ASSERT_EQ(rig.send("G33 Z-25 K1"), "ok");
   const uint64_t armed1 = rig.last.sent_cycle;
-  rig.run_until(4.5);
+  rig.run_until(7.5);
   ASSERT_TRUE(rig.wait_idle(1));
   const std::string st1 = rig.status();
-  // 10 mm: 2457 counts (10000 um x 780 / 3175, rounded).
-  const int64_t end = -2457;
+  const int64_t end = -6142;
   const PassFigures p1 = measure(rig, armed1, 0, end, rig.m->cycles());
   ASSERT_TRUE(p1.index_found);
   ASSERT_NE(p1.end_cycle, 0u) << "the pass did not reach its end";
@@ -150,12 +151,12 @@ TEST(LatheServo, ThreadPassFollowsAndTheSecondPassReentersTheHelix) {
   // The picture (docs/lathe.md): written where AVRMOTION_PLOT_DIR says.
   {
     std::ostringstream svg;
-    sim::write_lathe_plot(svg, "m16-servo: G33 Z-10 K1, pass 1 (300 rpm, 40-slot spindle, DC servo)", p1.plot);
+    sim::write_lathe_plot(svg, "m16-servo: G33 Z-25 K1, pass 1 (300 rpm, 40-slot spindle, DC servo)", p1.plot);
     EXPECT_NE(svg.str().find("data-kind='carriage'"), std::string::npos);
     EXPECT_NE(svg.str().find("data-kind='error'"), std::string::npos);
     if (const char* dir = std::getenv("AVRMOTION_PLOT_DIR")) {
       const std::string path = std::string(dir) + "/lathe-servo-pass.svg";
-      EXPECT_TRUE(sim::write_lathe_plot(path, "m16-servo: G33 Z-10 K1, pass 1 (300 rpm, 40-slot spindle, DC servo)",
+      EXPECT_TRUE(sim::write_lathe_plot(path, "m16-servo: G33 Z-25 K1, pass 1 (300 rpm, 40-slot spindle, DC servo)",
                                         p1.plot))
           << path;
     }
@@ -163,14 +164,14 @@ TEST(LatheServo, ThreadPassFollowsAndTheSecondPassReentersTheHelix) {
 
   // Retract to where the pass began, then the second pass from there.
   ASSERT_EQ(rig.send("G0 Z0"), "ok");
-  ASSERT_TRUE(rig.wait_idle(3));
+  ASSERT_TRUE(rig.wait_idle(5));
   const std::string st_back = rig.status();
   std::printf("retract: %s, motor at %.2f\n", st_back.c_str(), rig.servo->position());
   EXPECT_EQ(field(st_back, "last"), "done");
-  rig.run_until(6.8);
-  ASSERT_EQ(rig.send("G33 Z-10 K1"), "ok");
+  rig.run_until(12.3);
+  ASSERT_EQ(rig.send("G33 Z-25 K1"), "ok");
   const uint64_t armed2 = rig.last.sent_cycle;
-  rig.run_until(11.2);
+  rig.run_until(19.7);
   ASSERT_TRUE(rig.wait_idle(1));
   const std::string st2 = rig.status();
   const PassFigures p2 = measure(rig, armed2, 0, end, rig.m->cycles());
@@ -314,6 +315,76 @@ TEST(LatheServo, FrontEndRefusals) {
   EXPECT_EQ(field(st, "state"), "idle") << st;
   EXPECT_EQ(field(st, "slip"), "0") << st;
   EXPECT_EQ(field(st, "lost"), "0") << st;
+}
+
+}  // namespace
+
+namespace {
+
+// The same pass on the m16-lathe's stepper leadscrew, for the picture
+// beside the servo's (docs/lathe.md): 800 steps a leadscrew turn, lambda =
+// 800/127 steps per spindle count. Its following error against the
+// continuous helix is the follower's staircase: 0 to lambda steps behind,
+// never ahead, once locked.
+TEST(LatheServo, StepperPassForThePicture) {
+  simtest::LatheRig rig(two_runs(0.3, 100));
+  ASSERT_EQ(rig.send("G33 Z-10 K1"), "ok");
+  const uint64_t armed = rig.armed_after();
+  rig.run_for(4.5);
+  ASSERT_TRUE(rig.wait_idle(1));
+  constexpr double kSteps = 800.0 / 127.0, kMmPerStep = 3.175 / 800;
+  // The index as the firmware finds it.
+  bool was_high = true, found = false;
+  int64_t index_phase = 0;
+  uint64_t index_cycle = 0;
+  for (const auto& t : rig.spindle->log()) {
+    if (t.cycle <= armed || !t.count) continue;
+    if (t.index && !was_high) {
+      found = true;
+      index_phase = t.phase;
+      index_cycle = t.cycle;
+      break;
+    }
+    was_high = t.index;
+  }
+  ASSERT_TRUE(found);
+  const uint64_t end = rig.z().step_cycles.empty() ? 0 : rig.z().step_cycles.back();
+  std::vector<sim::LathePlotPoint> pts;
+  std::vector<double> lags;
+  for (uint64_t c = index_cycle; c <= end; c += 1024) {
+    const double s = (spindle_phase_at(*rig.spindle, c) - double(index_phase)) / 2;
+    const double helix = -kSteps * s, at = double(sim::position_at(rig.z(), c));
+    const double lag = -(helix - at);
+    pts.push_back({double(c) / rig.m->f_cpu(), helix * kMmPerStep, at * kMmPerStep, lag * kMmPerStep * 1000});
+    lags.push_back(lag);
+  }
+  ASSERT_FALSE(lags.empty());
+  // The catch-up (the carriage waits for the target to pass it, then chases
+  // it), then locked: the follower's staircase, up to lambda steps (one
+  // spindle count) behind, ahead only by the interpolation between two
+  // transitions of the spindle.
+  size_t lock = 0;
+  for (size_t i = 0; i < lags.size(); ++i)
+    if (lags[i] > kSteps + 1 || lags[i] < -1) lock = i + 1;
+  double catch_max = 0, lag_max = 0, lead_max = 0;
+  for (size_t i = 0; i < lags.size(); ++i) {
+    if (i < lock) catch_max = std::max(catch_max, std::fabs(lags[i]));
+    else {
+      lag_max = std::max(lag_max, lags[i]);
+      lead_max = std::max(lead_max, -lags[i]);
+    }
+  }
+  std::printf("stepper pass: %zu samples; catch-up %.3f s, up to %.1f steps; then lag <= %.2f, lead <= %.2f steps\n",
+              lags.size(), lock * 1024.0 / rig.m->f_cpu(), catch_max, lag_max, lead_max);
+  EXPECT_LT(lock, lags.size() / 4) << "locked late";
+  EXPECT_LE(lag_max, kSteps + 1);
+  EXPECT_LE(lead_max, 1.0);
+  if (const char* dir = std::getenv("AVRMOTION_PLOT_DIR")) {
+    const std::string path = std::string(dir) + "/lathe-stepper-pass.svg";
+    EXPECT_TRUE(sim::write_lathe_plot(path, "m16-lathe: G33 Z-10 K1 (300 rpm, 40-slot spindle, stepper 800 steps/turn)",
+                                      pts))
+        << path;
+  }
 }
 
 }  // namespace
