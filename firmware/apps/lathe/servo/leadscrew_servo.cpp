@@ -129,16 +129,17 @@ inline uint32_t fine_now() {
   return (o << 10) | t;
 }
 
-// The bridge: duty 0 disconnects OC1A (PD5 is then its PORT bit, low: no
-// spike, the bridge off); else OC1A is the fast PWM at OCR1A = duty.
-inline void set_duty(uint16_t duty) {
-  if (duty == 0) {
-    TCCR1A = kTccr1a;
-  } else {
-    OCR1A = duty;
-    TCCR1A = kTccr1a | _BV(COM1A1);
-  }
-}
+// The bridge: while a pass or move drives it, OC1A is connected in the
+// inverting fast PWM (COM1A1:0 = 11: set on the compare match, cleared at
+// BOTTOM) with OCR1A = TOP - duty, so ENABLE is high for `duty` of the 1024
+// cycles of a period, and duty 0 is OCR1A = TOP: a constant low (the
+// datasheet's "OCR1x equal to TOP: constant output"; non-inverting PWM at
+// OCR1A = 0 would still pulse once a period). OCR1A is double-buffered, so
+// a duty takes effect from the next period whole. Stopped, OC1A is
+// disconnected: PD5 is its PORT bit, low, at once.
+constexpr uint16_t kTop = 1023;
+constexpr uint8_t kConnected = kTccr1a | _BV(COM1A1) | _BV(COM1A0);
+inline void set_duty(uint16_t duty) { OCR1A = kTop - duty; }
 
 inline void bridge_direction(int8_t d) {
   if (d > 0) {
@@ -155,6 +156,7 @@ inline void bridge_direction(int8_t d) {
 // stands (quiet), then the state is idle. The reference becomes `target`.
 void drive_off(Stop why, int32_t target) {
   TCCR1A = kTccr1a;
+  OCR1A = kTop;
   In1::low();
   In2::low();
   driving_ = false;
@@ -166,6 +168,9 @@ void drive_off(Stop why, int32_t target) {
 }
 
 inline int32_t pass_target() { return base_ + follower.position(); }
+
+// v in the direction of the motion: +v for +Z, -v for -Z.
+inline int32_t along(int32_t v) { return dir_ > 0 ? v : -v; }
 
 // The current target of what runs, for a stop.
 int32_t target_now() {
@@ -221,7 +226,10 @@ __attribute__((noinline)) void pass_sample() {
   }
   // In the pass's direction: e = dir (target + dir lambda frac - pos).
   const int32_t ahead = int32_t((uint32_t(lam_q8_) * frac) >> 8);
-  const int32_t e = (target - here) * 256 * dir_ + ahead;
+  const int32_t e = along((target - here) * 256) + ahead;
+  // A target the motor cannot keep up with (too fast a spindle for the
+  // thread): the pass stops rather than cut off the helix.
+  if (e > int32_t(board::kServoMaxLag) * 256) return finish(Stop::overspeed, target);
   apply(pid.update(e, ff));
 }
 
@@ -234,9 +242,9 @@ __attribute__((noinline)) void move_sample() {
   if (since > period) period = since;
   const int32_t coast = period < kStalled ? int32_t(kCoastCycles_q8 / period) : 0;
   const Stop why = stop_ == Stop::none ? Stop::done : stop_;  // a disengage() keeps its reason
-  if ((move_dest_ - here) * dir_ * 256 <= coast) return finish(why, move_dest_);  // it coasts onto the end
+  if (along((move_dest_ - here) * 256) <= coast) return finish(why, move_dest_);  // it coasts onto the end
   if (!traj_done_) {
-    const int32_t remaining = (move_dest_ * 256 - traj_q8_) * dir_;  // counts x 256, >= 0
+    const int32_t remaining = along(move_dest_ * 256 - traj_q8_);  // counts x 256, >= 0
     const int32_t v8 = vel_q16_ >> 8;
     const int32_t stopping = v8 * v8 * 128 / kMoveAccel;  // counts x 256
     if (remaining <= stopping) {
@@ -252,11 +260,11 @@ __attribute__((noinline)) void move_sample() {
       traj_done_ = true;
       vel_q16_ = 0;
     } else {
-      traj_q8_ += step * dir_;
+      traj_q8_ += along(step);
     }
   }
   const uint16_t ff = uint16_t((uint32_t(vel_q16_ >> 4) * kMoveFf_q8) >> 20);
-  const int32_t e = (traj_q8_ - here * 256) * dir_;
+  const int32_t e = along(traj_q8_ - here * 256);
   apply(pid.update(e, ff > am::ServoPid::kMaxDuty ? am::ServoPid::kMaxDuty : ff));
 }
 
@@ -277,6 +285,8 @@ void sample() {
 }
 
 void start_drive(int8_t d) {
+  OCR1A = kTop;
+  TCCR1A = kConnected;  // constant low until the first sample's duty
   dir_ = d;
   bridge_direction(d);
   pid.reset();
@@ -336,7 +346,7 @@ namespace leadscrew {
 
 void init() {
   pid.set(kPid);
-  OCR1A = 0;
+  OCR1A = kTop;  // written directly: the timer is still in normal mode
   TCNT1 = 0;
   TCCR1A = kTccr1a;
   TCCR1B = kTccr1b;
@@ -413,7 +423,7 @@ void disengage() {
       // Decelerate: the move's end where the speed comes to 0.
       const int32_t v8 = vel_q16_ >> 8;
       const int32_t stopping = v8 * v8 * 128 / kMoveAccel;
-      move_dest_ = ((traj_q8_ + dir_ * stopping) >> 8) + dir_;
+      move_dest_ = ((traj_q8_ + along(stopping)) >> 8) + dir_;
       stop_ = Stop::stopped;
     } else {
       halt(Stop::stopped);
