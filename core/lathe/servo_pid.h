@@ -127,7 +127,7 @@ class ServoPid {
   static constexpr int32_t kHalf = int32_t(1) << 15;
   static int32_t clamp(int32_t v, int32_t lim) { return v > lim ? lim : v < -lim ? -lim : v; }
 
-  ServoCoefficients c_{0, 0, 0, 1, 1, 1, false};
+  ServoCoefficients c_{};
   int32_t integral_ = 0;
   int32_t last_ = 0;
   bool primed_ = false;

@@ -81,7 +81,7 @@ constexpr uint8_t kServoSampleOverflows = 16;
 // is refused (4 TPI is 39).
 // A pass whose carriage falls kServoMaxLag counts (260 um) behind its target
 // stops (last=overspeed): the spindle turns too fast for the thread (the
-// motor's 2134 counts/s are 348 rpm for 1 mm, 89 rpm for a 5.86 mm lead).
+// motor's 2134 counts/s are 521 rpm for 1 mm, 89 rpm for a 5.86 mm lead).
 constexpr uint16_t kServoMaxLag = 64;
 constexpr uint32_t kLeadscrewAccel = 20000;
 constexpr uint32_t kLeadscrewMaxRate = 1800;

@@ -33,9 +33,10 @@ constexpr double kFollowBound = 6;    // counts (24.4 um) of carriage, either wa
 constexpr double kPhaseBound = 6;     // counts, the second pass against the first's helix
 constexpr double kReentryBound = 2;   // counts, the second pass at its index (the retract's slip)
 // Cycles from the switch to ENABLE low for good: the switch is read every
-// PWM period (1024 cycles), behind at most one other vector (INT1 343, INT0
-// 268, the UART 172 cycles at most, as the test prints them), plus the
-// overflow vector's own entry.
+// PWM period (1024 cycles) at its BOTTOM, behind at most one other vector
+// (INT1 343, INT0 268, the UART 172 cycles at most, as the test prints
+// them), plus the overflow vector's own entry; the test closes it at the
+// worst moment, just after a BOTTOM.
 constexpr uint64_t kLimitBound = 1600;
 
 // The spindle's continuous angle in counts at a cycle: its transitions
@@ -210,8 +211,17 @@ TEST(LatheServo, LimitSwitchStopsThePwmAtOnce) {
   EXPECT_LE(std::labs(err), long(kFollowBound + kLambda + 1)) << running;
   ASSERT_GT(rig.enable->size(), 100u) << "the PWM never ran";
 
-  const uint64_t hit = rig.m->cycles() + 12345;  // not on a PWM period's edge
-  rig.run_until(double(hit) / rig.m->f_cpu());
+  // The worst moment: just after a period's BOTTOM (where the inverting PWM
+  // clears ENABLE and the overflow vector reads the switch): the period's
+  // pulse at its end is still to come, and the switch is read again only at
+  // the next BOTTOM.
+  const size_t before = rig.enable->size();
+  rig.m->run([&rig, before] { return rig.enable->size() > before + 1 && !rig.enable->back().level; },
+             rig.m->f_cpu() / 100);
+  ASSERT_FALSE(rig.enable->back().level);
+  rig.m->run([] { return false; }, 200);  // the overflow vector has read the switch open
+  ASSERT_FALSE(rig.enable->back().level);
+  const uint64_t hit = rig.m->cycles();
   const double x_hit = rig.servo->position();
   rig.m->hold_input('D', 7, false);
   rig.run_until(double(hit) / rig.m->f_cpu() + 0.1);
@@ -240,7 +250,7 @@ TEST(LatheServo, LimitSwitchStopsThePwmAtOnce) {
     std::printf("  vector %d: %llu entries, longest %llu cycles\n", v.first, (unsigned long long)v.second.count,
                 (unsigned long long)v.second.max_cycles);
   std::printf("  stack: %u B of %u B free\n", rig.m->stack_bytes(), rig.m->free_ram());
-  EXPECT_LE(rises_after, 1u);  // at most the period already begun when the switch closed
+  EXPECT_LE(rises_after, 1u);  // at most the pulse of the period already begun when the switch closed
   ASSERT_TRUE(rig.wait_idle(1));
   const std::string st = rig.status();
   EXPECT_EQ(field(st, "last"), "limit") << st;
