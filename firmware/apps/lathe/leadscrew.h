@@ -1,7 +1,11 @@
 // The electronic leadscrew: a stepper on the leadscrew that follows the
 // spindle at an exact ratio, and positions the carriage between passes.
 // The control API for the front ends (the UART's G33 here, the operator
-// panel's keypad workflow).
+// panel's keypad workflow). On a board with kServoLeadscrew (m16-servo) the
+// same API drives the seed's DC servo instead (servo/leadscrew_servo.cpp:
+// positions in motor encoder counts, a pass locked from its index under a
+// PID, no catching state, moving while the motor coasts to rest; docs/
+// lathe.md, "The m16-servo image").
 //
 // Contract
 //   Positions are leadscrew steps, +Z away from the chuck, 0 at power-up.

@@ -40,7 +40,6 @@
 namespace leadscrew {
 namespace {
 
-using Pwm = board::ServoPwm;
 using In1 = board::ServoIn1;
 using In2 = board::ServoIn2;
 
