@@ -72,7 +72,8 @@ constexpr double kMmPerCount = 3.175 / 780;
 // the firmware finds it), its end (the first count whose target
 // floor(sigma lambda s) reaches `end`), and the carriage against the helix
 // every servo log entry between the two (or up to `until`).
-PassFigures measure(const ServoRig& rig, uint64_t armed, double base, int64_t end, uint64_t until) {
+PassFigures measure(const ServoRig& rig, uint64_t armed, double base, int64_t end, uint64_t until,
+                    int sigma = kSigma) {
   PassFigures f;
   bool was_high = true;
   for (const auto& t : rig.spindle->log()) {
@@ -87,8 +88,8 @@ PassFigures measure(const ServoRig& rig, uint64_t armed, double base, int64_t en
       continue;
     }
     const int64_t s = (t.phase - f.index_phase) / 2;
-    const double target = std::floor(kSigma * kLambda * double(s));
-    if (target <= double(end) && t.cycle < until) {
+    const double target = std::floor(sigma * kLambda * double(s));
+    if ((sigma < 0 ? target <= double(end) : target >= double(end)) && t.cycle < until) {
       f.end_cycle = t.cycle;
       break;
     }
@@ -99,8 +100,8 @@ PassFigures measure(const ServoRig& rig, uint64_t armed, double base, int64_t en
   for (const auto& e : rig.servo->log()) {
     if (e.cycle < f.index_cycle || e.cycle > last) continue;
     const double s = (spindle_phase_at(*rig.spindle, e.cycle) - double(f.index_phase)) / 2;
-    const double helix = base + kSigma * kLambda * s;
-    const double lag = kSigma * (helix - e.position);
+    const double helix = base + sigma * kLambda * s;
+    const double lag = sigma * (helix - e.position);
     f.plot.push_back({double(e.cycle) / rig.m->f_cpu(), helix * kMmPerCount, e.position * kMmPerCount,
                       lag * kMmPerCount * 1000});
     if (first) f.at_index = lag;
@@ -472,7 +473,8 @@ TEST(LatheServo, ImageLeavesTenPercentOfTheFlashAndStackHeadroom) {
 
 namespace {
 
-// The firmware's feedforward and gains are for the seed's plant; a motor
+// A left-hand thread (the pass towards +Z, IN1 driven). The firmware's
+// feedforward and gains are for the seed's plant; a motor
 // that is not it (gain and time constant off by the factors below) is
 // followed by the PID alone for what the model does not predict. And a
 // pass armed while the spindle already turns at 300 rpm: the motor starts
@@ -486,6 +488,7 @@ TEST(LatheServo, PlantsOffTheModelAndARunningStart) {
     double bound;  // counts
   };
   const Case cases[] = {
+      {"left hand (+Z)", 2.0866, 74.29, false, kFollowBound},
       {"gain x 0.7", 2.0866 * 0.7, 74.29, false, kOffModelBound},
       {"gain x 1.4", 2.0866 * 1.4, 74.29, false, kOffModelBound},
       {"time constant x 2", 2.0866, 74.29 / 2, false, kOffModelBound},
@@ -500,12 +503,13 @@ TEST(LatheServo, PlantsOffTheModelAndARunningStart) {
     p.lines = 40;
     p.profile = c.running ? std::vector<sim::RpmPoint>{{0, 300}} : std::vector<sim::RpmPoint>{{0.3, 0}, {1.3, 300}};
     ServoRig rig(p, sp);
-    ASSERT_EQ(rig.send("G33 Z-10 K1"), "ok") << c.what;
+    const bool left = &c == &cases[0];  // towards +Z: a left-hand thread, the bridge's other direction
+    ASSERT_EQ(rig.send(left ? "G33 Z10 K1" : "G33 Z-10 K1"), "ok") << c.what;
     const uint64_t armed = rig.last.sent_cycle;
     rig.run_until(4.0);
     ASSERT_TRUE(rig.wait_idle(1)) << c.what;
     const std::string st = rig.status();
-    const PassFigures f = measure(rig, armed, 0, -2457, rig.m->cycles());
+    const PassFigures f = measure(rig, armed, 0, left ? 2457 : -2457, rig.m->cycles(), left ? 1 : -1);
     ASSERT_TRUE(f.index_found) << c.what;
     std::printf("%s: lag <= %.2f, lead <= %.2f counts; %s\n", c.what, f.max_lag, f.max_lead, st.c_str());
     EXPECT_EQ(field(st, "last"), "length") << c.what << ": " << st;

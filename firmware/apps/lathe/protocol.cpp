@@ -165,7 +165,7 @@ void status() {
   hal::uart::write_u32(leadscrew::lost_counts());
   hal::uart::write_P(PSTR(" last="));
   hal::uart::write_P(kStops + 10 * uint8_t(leadscrew::last_stop()));
-  if (board::kServoLeadscrew) {
+  if (board::kServoLeadscrew && !leadscrew::busy()) {  // the last motion's, once the motor stands
     hal::uart::write_P(PSTR(" slip="));
     hal::uart::write_i32(leadscrew::last_slip());
   }
