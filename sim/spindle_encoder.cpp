@@ -1,6 +1,5 @@
 #include "spindle_encoder.h"
 
-#include <avr_ioport.h>
 #include <sim_avr.h>
 #include <sim_cycle_timers.h>
 #include <sim_io.h>
