@@ -32,6 +32,7 @@ constexpr int kSigma = -1;  // a right-hand thread towards the chuck: -Z
 constexpr double kFollowBound = 6;    // counts (24.4 um) of carriage, either way, every sample of a pass
 constexpr double kPhaseBound = 6;     // counts, the second pass against the first's helix
 constexpr double kReentryBound = 2;   // counts, the second pass at its index (the retract's slip)
+constexpr double kStopLeadBound = kFollowBound + kLambda;  // counts (49.4 um) ahead, a spindle slowing to rest mid-pass
 constexpr double kOffModelBound = 8;  // counts (32.6 um): a motor whose gain or time constant is off the model's
 constexpr double kRunningStartBound = 10;  // counts (40.7 um): a pass armed while the spindle turns at 300 rpm
 // Cycles from the switch to ENABLE low for good: the switch is read every
@@ -307,6 +308,14 @@ TEST(LatheServo, PwmZeroIsTrulyOff) {
   const std::string st = rig.status();
   EXPECT_EQ(field(st, "state"), "locked") << st;
   const uint64_t pass_end = rig.m->cycles();
+  // The same pass against the helix, from the index through the spindle's
+  // ramp up, 1 s at speed, its ramp down and 0.6 s at rest (the carriage
+  // ends up to a spindle count's worth ahead of where the spindle stopped
+  // between two counts: the interpolation runs on to the next one).
+  const PassFigures f = measure(rig, armed, 0, -100000, pass_end);
+  std::printf("pass through the ramp down to rest: lag <= %.2f, lead <= %.2f counts\n", f.max_lag, f.max_lead);
+  EXPECT_LE(f.max_lag, kFollowBound);
+  EXPECT_LE(f.max_lead, kStopLeadBound);
   ASSERT_EQ(rig.send("STOP"), "ok");
   const uint64_t stopped = rig.m->cycles();
   ASSERT_TRUE(rig.wait_idle(1));
