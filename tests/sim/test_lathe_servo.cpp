@@ -42,18 +42,31 @@ constexpr double kRunningStartBound = 10;  // counts (40.7 um): a pass armed whi
 // worst moment, just after a BOTTOM.
 constexpr uint64_t kLimitBound = 1600;
 
-// The spindle's continuous angle in counts at a cycle: its transitions
-// (two per line, single channel) interpolated linearly.
-double spindle_phase_at(const sim::SpindleEncoder& sp, uint64_t cycle) {
-  const auto& log = sp.log();
-  auto it = std::lower_bound(log.begin(), log.end(), cycle,
-                             [](const sim::SpindleTransition& t, uint64_t c) { return t.cycle < c; });
-  if (it == log.begin()) return double(it->phase);
-  if (it == log.end()) return double(log.back().phase);
-  const auto& b = *it;
-  const auto& a = *(it - 1);
-  return a.phase + double(cycle - a.cycle) / double(b.cycle - a.cycle) * double(b.phase - a.phase);
-}
+// The spindle's continuous angle in encoder phases (two per line, single
+// channel) at increasing times: the model's rpm profile integrated (it is
+// linear between its points: the trapezoid rule on 10 us steps is exact but
+// for the steps that hold a point), from the model's start, mid-phase 0 at
+// t = 0 (sim/spindle_encoder.h); a transition is the angle crossing a whole
+// phase, so this agrees with the model's log and is right between
+// transitions too, and at rest.
+class SpindleAngle {
+ public:
+  explicit SpindleAngle(const sim::SpindleEncoder& sp) : sp_(sp) {}
+  double at(uint64_t cycle, double f_cpu) {
+    const double t = double(cycle) / f_cpu;
+    constexpr double kStep = 1e-5;
+    while (t_ < t) {
+      const double dt = std::min(kStep, t - t_);
+      angle_ += 0.5 * (sp_.rpm_at(t_) + sp_.rpm_at(t_ + dt)) / 60 * sp_.phases_per_turn() * dt;
+      t_ += dt;
+    }
+    return angle_;
+  }
+
+ private:
+  const sim::SpindleEncoder& sp_;
+  double t_ = 0, angle_ = 0.5;
+};
 
 struct PassFigures {
   bool index_found = false;
@@ -98,9 +111,10 @@ PassFigures measure(const ServoRig& rig, uint64_t armed, double base, int64_t en
   if (!f.index_found) return f;
   const uint64_t last = f.end_cycle ? f.end_cycle : until;
   bool first = true;
+  SpindleAngle angle(*rig.spindle);
   for (const auto& e : rig.servo->log()) {
     if (e.cycle < f.index_cycle || e.cycle > last) continue;
-    const double s = (spindle_phase_at(*rig.spindle, e.cycle) - double(f.index_phase)) / 2;
+    const double s = (angle.at(e.cycle, rig.m->f_cpu()) - double(f.index_phase)) / 2;
     const double helix = base + sigma * kLambda * s;
     const double lag = sigma * (helix - e.position);
     f.plot.push_back({double(e.cycle) / rig.m->f_cpu(), helix * kMmPerCount, e.position * kMmPerCount,
@@ -393,8 +407,9 @@ TEST(LatheServo, StepperPassForThePicture) {
   const uint64_t end = rig.z().step_cycles.empty() ? 0 : rig.z().step_cycles.back();
   std::vector<sim::LathePlotPoint> pts;
   std::vector<double> lags;
+  SpindleAngle angle(*rig.spindle);
   for (uint64_t c = index_cycle; c <= end; c += 1024) {
-    const double s = (spindle_phase_at(*rig.spindle, c) - double(index_phase)) / 2;
+    const double s = (angle.at(c, rig.m->f_cpu()) - double(index_phase)) / 2;
     const double helix = -kSteps * s, at = double(sim::position_at(rig.z(), c));
     const double lag = -(helix - at);
     pts.push_back({double(c) / rig.m->f_cpu(), helix * kMmPerStep, at * kMmPerStep, lag * kMmPerStep * 1000});
