@@ -50,6 +50,10 @@ constexpr bool kOperatorPanel = false;
 // named in the descriptor for the simulator.
 constexpr bool kSpindleEncoder = false;
 struct SpindlePins;  // A, B, Index, Limit: only with kSpindleEncoder
+// The lathe's leadscrew driven by a DC servo (firmware/boards/m16-servo.h)
+// instead of a stepper; its pins named in the descriptor for the simulator.
+constexpr bool kServoLeadscrew = false;
+struct ServoPins;  // Pwm, In1, In2, Encoder: only with kServoLeadscrew
 }  // namespace board_defaults
 namespace board {
 using namespace board_defaults;

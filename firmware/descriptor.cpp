@@ -35,14 +35,37 @@ template <bool Present, typename Hw = board::SpindlePins>
 struct SpindleWiring {
   static constexpr uint8_t a = am::kNoPin, b = am::kNoPin, index = am::kNoPin, limit = am::kNoPin;
 };
+// Channel B, on a board whose spindle has one (a quadrature encoder).
+template <typename Hw, typename = void>
+struct SpindleB {
+  static constexpr uint8_t pin = am::kNoPin;
+};
+template <typename Hw>
+struct SpindleB<Hw, decltype(void(Hw::B::bit))> {
+  static constexpr uint8_t pin = am::pin_code(Hw::B::port, Hw::B::bit);
+};
 template <typename Hw>
 struct SpindleWiring<true, Hw> {
   static constexpr uint8_t a = am::pin_code(Hw::A::port, Hw::A::bit);
-  static constexpr uint8_t b = am::pin_code(Hw::B::port, Hw::B::bit);
+  static constexpr uint8_t b = SpindleB<Hw>::pin;
   static constexpr uint8_t index = am::pin_code(Hw::Index::port, Hw::Index::bit);
   static constexpr uint8_t limit = am::pin_code(Hw::Limit::port, Hw::Limit::bit);
 };
 using Spindle = SpindleWiring<board::kSpindleEncoder>;
+
+// A DC-servo leadscrew's wiring (board.h: kServoLeadscrew).
+template <bool Present, typename Hw = board::ServoPins>
+struct ServoWiring {
+  static constexpr uint8_t pwm = am::kNoPin, in1 = am::kNoPin, in2 = am::kNoPin, encoder = am::kNoPin;
+};
+template <typename Hw>
+struct ServoWiring<true, Hw> {
+  static constexpr uint8_t pwm = am::pin_code(Hw::Pwm::port, Hw::Pwm::bit);
+  static constexpr uint8_t in1 = am::pin_code(Hw::In1::port, Hw::In1::bit);
+  static constexpr uint8_t in2 = am::pin_code(Hw::In2::port, Hw::In2::bit);
+  static constexpr uint8_t encoder = am::pin_code(Hw::Encoder::port, Hw::Encoder::bit);
+};
+using Servo = ServoWiring<board::kServoLeadscrew>;
 
 template <typename Set>
 struct Describe;
@@ -51,14 +74,15 @@ template <typename... Axes>
 struct Describe<AxisSet<Axes...>> {
   static_assert(sizeof...(Axes) <= am::kMaxAxes, "the descriptor holds six axes");
   static constexpr am::BoardDescriptor make() {
-    return am::BoardDescriptor{{'A', 'M', 'B', '2'}, AVRMOTION_BOARD_NAME, AVRMOTION_MCU_NAME,
+    return am::BoardDescriptor{{'A', 'M', 'B', '3'}, AVRMOTION_BOARD_NAME, AVRMOTION_MCU_NAME,
                                F_CPU, board::kBaud, uint8_t(sizeof...(Axes)), Heater::pwm, Heater::adc, Heater::ok,
                                uint8_t((board::kGcode ? am::kProgramGcode : 0) |
                                        (board::kCommands ? am::kProgramCommands : 0) |
                                        (board::kRealtime ? am::kProgramRealtime : 0)),
                                {0, 0, 0},
                                {with_endstop(Axes::descriptor())...},
-                               {Spindle::a, Spindle::b, Spindle::index, Spindle::limit}};
+                               {Spindle::a, Spindle::b, Spindle::index, Spindle::limit},
+                               {Servo::pwm, Servo::in1, Servo::in2, Servo::encoder}};
   }
 };
 

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <memory>
 
+#include "dc_servo.h"
 #include "machine.h"
 
 namespace sim {
@@ -40,6 +42,8 @@ LatheRunFigures run_lathe_pass(const std::string& elf, const SpindleParams& spin
   const double t0 = 0.2, t1 = t0 + ramp_s, t2 = t1 + seconds, t3 = t2 + ramp_s;
   p.profile = {{t0, 0}, {t1, rpm}, {t2, rpm}, {t3, 0}};
   SpindleEncoder spindle(m, p);
+  std::unique_ptr<DcServo> servo;
+  if (m.board().servo_pins[0] != am::kNoPin) servo.reset(new DcServo(m));
   m.run([&m] { return m.serial().banner_seen(); }, m.f_cpu());
   if (!send(m, encoder_line, 1) || !send(m, g33_line, 1)) return f;
   const uint64_t armed = m.serial().responses().back().sent_cycle;
@@ -48,7 +52,11 @@ LatheRunFigures run_lathe_pass(const std::string& elf, const SpindleParams& spin
   if (!send(m, "?", 1)) return f;
   const std::vector<std::string>& rx = m.serial().received();
   f.status = rx.size() >= 2 ? rx[rx.size() - 2] : "";
-  f.pass = check_pass(spindle, *m.axis('Z'), step, thread, 0, armed, until);
+  if (m.axis('Z')) f.pass = check_pass(spindle, *m.axis('Z'), step, thread, 0, armed, until);
+  if (servo) {
+    f.servo = true;
+    f.servo_position = servo->position();
+  }
   f.model_counts = spindle.counts();
   f.firmware_counts = std::atoll(field(f.status, "count").c_str());
   const std::string lost = field(f.status, "lost");
@@ -56,7 +64,8 @@ LatheRunFigures run_lathe_pass(const std::string& elf, const SpindleParams& spin
   f.edge_rate = rpm / 60 * (p.quadrature ? 4.0 : 1.0) * p.lines;
 
   f.pulses = pulse_timing(step, dir);
-  const std::vector<uint64_t>& c = m.axis('Z')->step_cycles;
+  static const std::vector<uint64_t> kNone;
+  const std::vector<uint64_t>& c = m.axis('Z') ? m.axis('Z')->step_cycles : kNone;
   const uint64_t window = m.f_cpu() / 100;
   for (size_t a = 0, b = 0; b < c.size(); ++b) {
     while (c[b] - c[a] >= window) ++a;

@@ -1,4 +1,4 @@
-// One locked lathe pass on the m16-lathe image at a steady spindle speed,
+// One locked lathe pass on the m16-lathe image (or the m16-servo's: below) at a steady spindle speed,
 // measured: for the timing tests (tests/sim/test_lathe_timing.cpp) and the
 // benchmark's lathe rows (sim/bench_lathe.cpp).
 //
@@ -31,6 +31,11 @@ struct LatheRunFigures {
   PulseTiming pulses;
   double step_rate = 0;      // steps/s, the busiest 10 ms
   uint64_t vector_max = 0;   // INT0/INT1, entry to RETI, cycles
+  // A DC-servo leadscrew (m16-servo, sim/dc_servo.h) instead of a stepper:
+  // its model runs, the step figures above stay empty, `pass` is not
+  // checked (tests/sim/test_lathe_servo.cpp measures a servo's pass).
+  bool servo = false;
+  double servo_position = 0;  // motor encoder pulses, at the end
 };
 
 LatheRunFigures run_lathe_pass(const std::string& elf, const SpindleParams& spindle, double rpm, double ramp_s,

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "dc_servo.h"
 #include "endstops.h"
 #include "keypad_model.h"
 #include "lcd_model.h"
@@ -60,7 +61,8 @@ void usage() {
                "  --endstop A=STEPS   axis A's switch at STEPS instead; more than once allowed\n"
                "  --endstop-bounce US each contact change bounces for US microseconds (default 0)\n"
                "  --no-endstops       no switches: every endstop stays open\n"
-               "  a board with a spindle encoder (m16-lathe) runs a simulated spindle (docs/lathe.md):\n"
+               "  a board with a spindle encoder (m16-lathe, m16-servo) runs a simulated spindle (docs/lathe.md);\n"
+               "  the m16-servo's leadscrew is the seed's DC servo (sim/dc_servo.h):\n"
                "  --spindle-lines N   encoder lines per turn (default 40, the seed's disc)\n"
                "  --spindle-quadrature  two channels a quarter line apart (default: one channel)\n"
                "  --spindle-rpm RPM@S rpm at S seconds, linear between points, negative turns backward;\n"
@@ -252,6 +254,11 @@ int main(int argc, char** argv) {
       spindle_model.reset(new sim::SpindleEncoder(machine, spindle));
     } else if (spindle_given) {
       throw std::runtime_error("--spindle-*: this board has no spindle encoder");
+    }
+    // A DC-servo leadscrew (m16-servo): the seed's plant on its pins.
+    std::unique_ptr<sim::DcServo> servo_model;
+    if (machine.board().servo_pins[0] != am::kNoPin) {
+      servo_model.reset(new sim::DcServo(machine));
     }
     // The panel: the display (its screens logged) and the keypad's script.
     std::unique_ptr<sim::LcdModel> lcd;

@@ -1,6 +1,5 @@
 #include "spindle_encoder.h"
 
-#include <avr_ioport.h>
 #include <sim_avr.h>
 #include <sim_cycle_timers.h>
 #include <sim_io.h>
@@ -132,8 +131,6 @@ void SpindleEncoder::set_pins(uint64_t cycle, bool logged, bool count) {
   } else {
     a = (p % 2) == 1;  // low in the first half line, high in the second
   }
-  // The encoder drives its pins: simavr's "external" levels of the port, so
-  // the firmware's pull-ups (a PORT write) do not override them.
   drive(pin_index_, index);
   if (p_.quadrature) drive(pin_b_, b);
   drive(pin_a_, a);
@@ -141,18 +138,10 @@ void SpindleEncoder::set_pins(uint64_t cycle, bool logged, bool count) {
 }
 
 void SpindleEncoder::drive(uint8_t pin, bool level) {
-  const char port = am::pin_port(pin);
-  const uint8_t bit = uint8_t(1u << am::pin_bit(pin));
-  uint8_t& mask = external_mask_[port - 'A'];
-  uint8_t& value = external_value_[port - 'A'];
-  mask |= bit;
-  value = level ? uint8_t(value | bit) : uint8_t(value & ~bit);
-  avr_ioport_external_t e;
-  e.name = uint8_t(port);
-  e.mask = mask;
-  e.value = value;
-  avr_ioctl(m_.avr(), AVR_IOCTL_IOPORT_SET_EXTERNAL(port), &e);
-  m_.set_input(port, am::pin_bit(pin), level);
+  // The encoder drives its pins: held as simavr's "external" levels of the
+  // port (Machine::hold_input, one registry per port for every model on
+  // it), so the firmware's pull-ups (a PORT write) do not override them.
+  m_.hold_input(am::pin_port(pin), am::pin_bit(pin), level);
 }
 
 uint64_t SpindleEncoder::on_transition(avr_t*, uint64_t when, void* param) {

@@ -89,7 +89,6 @@ class SpindleEncoder {
   int next_direction_ = 0;  // ... and direction
   uint64_t last_cycle_ = 0;
   int64_t counts_ = 0;
-  uint8_t external_mask_[4] = {}, external_value_[4] = {};  // per port A..D
   std::vector<SpindleTransition> log_;
   std::mt19937 rng_;
 };

@@ -45,7 +45,7 @@ constexpr uint8_t kMaxAxes = 6;
 constexpr uint8_t kProgramGcode = 1, kProgramCommands = 2, kProgramRealtime = 4;
 
 struct BoardDescriptor {
-  char magic[4];          // "AMB2"
+  char magic[4];          // "AMB3"
   char board[12];         // NUL-terminated
   char mcu[12];           // simavr's part name, NUL-terminated
   uint32_t f_cpu;
@@ -62,9 +62,13 @@ struct BoardDescriptor {
   // A lathe's spindle encoder (kNoPin for all four on other boards): channel
   // A, channel B (quadrature), the index, the carriage's limit switch.
   uint8_t spindle_pins[4];
+  // A DC-servo leadscrew (kNoPin for all four on other boards): the bridge's
+  // enable (the PWM), its two direction inputs (IN1 high alone: +, IN2 high
+  // alone: -, both low: brake), the motor encoder's channel.
+  uint8_t servo_pins[4];
 };
 
 static_assert(sizeof(AxisDescriptor) == 12, "descriptor layout must match on host and AVR");
-static_assert(sizeof(BoardDescriptor) == 120, "descriptor layout must match on host and AVR");
+static_assert(sizeof(BoardDescriptor) == 124, "descriptor layout must match on host and AVR");
 
 }  // namespace am

@@ -3,6 +3,8 @@
 // message.
 #include "hal/avr/claims.h"
 
+#include "firmware/boards/common/m16_servo_claims.h"
+
 using namespace hal::claim;
 
 // The Uno's claims: Timer2's PWM (stepper 1) at no prescaler, Timer0's
@@ -35,6 +37,12 @@ using Claims = hal::ClaimSet<timer1, own_clock, timer0_pwm8 | timer0_div64 | oc0
 using Claims = hal::ClaimSet<timer1, timer0_ovf | timer0>;
 #elif CASE == 10  // 8-bit PWM whose rate nobody names
 using Claims = hal::ClaimSet<timer1, timer2_pwm8 | oc2a>;
+#elif CASE == 11  // valid: the m16-servo's claims (firmware/boards/m16-servo.h)
+using Claims = hal::ClaimSet<m16_servo_claims::kServo, m16_servo_claims::kSpindle, own_clock, uart>;
+#elif CASE == 12  // the servo's PWM on Timer1 beside the stepper leadscrew's pace (Timer1, CTC)
+using Claims = hal::ClaimSet<m16_servo_claims::kServo, m16_servo_claims::kSpindle, own_clock, uart, timer1>;
+#elif CASE == 13  // the servo's encoder on INT0 beside a quadrature spindle's channel B
+using Claims = hal::ClaimSet<m16_servo_claims::kServo, m16_servo_claims::kSpindle | int0, own_clock, uart>;
 #endif
 
 static_assert(sizeof(Claims) > 0, "instantiate");

@@ -1,4 +1,5 @@
-// The m16-lathe image with a simulated spindle, for the lathe tests: lines
+// The m16-lathe image (LatheRig) or the m16-servo image (ServoRig) with a
+// simulated spindle, for the lathe tests: lines
 // go out as a sender's (relay mode: no WAIT of the host's own between them),
 // one at a time, each run until its answer.
 #pragma once
@@ -7,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "dc_servo.h"
 #include "lathe_check.h"
 #include "sim_fixture.h"
 #include "spindle_encoder.h"
@@ -68,5 +70,48 @@ inline std::string field(const std::string& status, const std::string& key) {
   const size_t from = at + k.size(), to = status.find(' ', from);
   return status.substr(from, to == std::string::npos ? std::string::npos : to - from);
 }
+
+}  // namespace simtest
+
+namespace simtest {
+
+// The m16-servo image with a simulated spindle and the seed's DC servo
+// (sim/dc_servo.h) on its leadscrew; lines as LatheRig sends them.
+struct ServoRig {
+  explicit ServoRig(const sim::SpindleParams& p, const sim::ServoParams& s = sim::ServoParams())
+      : m(new sim::Machine(image("m16-servo"))), enable(&m->watch_pin('D', 5)) {
+    m->serial().relay_only();
+    spindle.reset(new sim::SpindleEncoder(*m, p));
+    servo.reset(new sim::DcServo(*m, s));
+    m->run([this] { return m->serial().banner_seen(); }, m->f_cpu());
+  }
+
+  std::string send(const std::string& line, double budget_s = 1) {
+    const size_t k = m->serial().responses().size();
+    m->serial().relay(line.data(), line.size());
+    m->serial().relay("\n", 1);
+    m->run([this, k] { return m->serial().responses().size() > k && !m->serial().responses()[k].answer.empty(); },
+           uint64_t(budget_s * m->f_cpu()));
+    if (m->serial().responses().size() <= k) return "";
+    last = m->serial().responses()[k];
+    return last.answer;
+  }
+  std::string status() {
+    if (send("?") != "ok") return "";
+    const auto& r = m->serial().received();
+    return r.size() >= 2 ? r[r.size() - 2] : "";
+  }
+  void run_until(double t_s) {
+    const uint64_t until = uint64_t(t_s * m->f_cpu());
+    if (until > m->cycles()) m->run([] { return false; }, until - m->cycles());
+  }
+  bool wait_idle(double budget_s) { return send("WAIT", budget_s) == "ok"; }
+
+  std::unique_ptr<sim::Machine> m;
+  std::unique_ptr<sim::SpindleEncoder> spindle;
+  std::unique_ptr<sim::DcServo> servo;
+  const std::vector<sim::PinEdge>* enable;  // PD5, the L298's ENABLE
+  sim::Response last;
+};
 
 }  // namespace simtest

@@ -2,8 +2,18 @@
 # and pace on Timer1, the spindle encoder (firmware/devices/), the time base
 # (firmware/engine/clock.cpp alone: the step engine's Timer1 vector would
 # collide with the pace's, so the engine part is not linked).
-set(APP_PARTS devices)
 list(APPEND app_sources ${CMAKE_CURRENT_SOURCE_DIR}/engine/clock.cpp ${CMAKE_CURRENT_SOURCE_DIR}/engine/clock_vector.S)
+# A board with kServoLeadscrew (firmware/boards/m16-servo.h) drives the
+# leadscrew with a DC servo: servo/leadscrew_servo.cpp in place of the
+# stepper's leadscrew.cpp, its own single-channel spindle count (INT0 is the
+# motor encoder's), no operator panel (nor its devices).
+file(STRINGS ${CMAKE_CURRENT_SOURCE_DIR}/boards/${board_name}.h servo_line REGEX "^constexpr bool kServoLeadscrew = true;")
+if(servo_line)
+  list(REMOVE_ITEM app_sources ${app_dir}/leadscrew.cpp ${app_dir}/operator.cpp)
+  list(APPEND app_sources ${app_dir}/servo/leadscrew_servo.cpp)
+else()
+  set(APP_PARTS devices)
+endif()
 # The operator panel's image (a board with kOperatorPanel, firmware/apps/
 # lathe/operator.h) has no UART front end: neither the protocol nor the
 # UART driver (whose vectors would stay linked) goes into it.

@@ -1,7 +1,11 @@
 // The electronic leadscrew: a stepper on the leadscrew that follows the
 // spindle at an exact ratio, and positions the carriage between passes.
 // The control API for the front ends (the UART's G33 here, the operator
-// panel's keypad workflow).
+// panel's keypad workflow). On a board with kServoLeadscrew (m16-servo) the
+// same API drives the seed's DC servo instead (servo/leadscrew_servo.cpp:
+// positions in motor encoder counts, a pass locked from its index under a
+// PID, no catching state, moving while the motor coasts to rest; docs/
+// lathe.md, "The m16-servo image").
 //
 // Contract
 //   Positions are leadscrew steps, +Z away from the chuck, 0 at power-up.
@@ -75,6 +79,15 @@ int32_t spindle_count();  // net spindle counts since init()
 uint16_t lost_counts();   // counts the decoder could not be sure of (spindle_encoder.h)
 
 bool set_encoder(bool quadrature, uint16_t lines);
+
+// The DC-servo leadscrew only (servo/leadscrew_servo.cpp, a board with
+// kServoLeadscrew): reference() is where the last pass or move was meant to
+// end (the base of the next pass, and the front end's "here"); last_slip()
+// that end's target minus where the carriage is (final once idle: the
+// motor has stopped). The stepper's carriage always ends where it was
+// meant to.
+int32_t reference();
+int32_t last_slip();
 am::Machine machine();
 
 }  // namespace leadscrew

@@ -59,7 +59,8 @@ const char* refusal_text(leadscrew::Refusal r) {
   switch (r) {
     case leadscrew::Refusal::busy: return PSTR("busy");
     case leadscrew::Refusal::bad_start: return PSTR("E must be below D");
-    case leadscrew::Refusal::too_steep: return PSTR("16 or more steps per count");
+    case leadscrew::Refusal::too_steep:
+      return board::kServoLeadscrew ? PSTR("64 or more counts per count") : PSTR("16 or more steps per count");
     case leadscrew::Refusal::phase_range: return PSTR("start phase out of range");
     case leadscrew::Refusal::limit: return PSTR("limit switch hit");
     case leadscrew::Refusal::bad_rate: return PSTR("feed must be above 0");
@@ -99,7 +100,9 @@ void thread(const am::GcodeBlock& b) {
   const int32_t pitch = b.get(b.has('K') ? 'K' : 'P');
   if (pitch <= 0) return error(PSTR("pitch must be above 0"));
   const int32_t end = mm_to_steps(b.get('Z'));
-  const int32_t here = leadscrew::position();
+  // The servo's passes start from where the last motion was meant to end
+  // (its slip carried into the pass), the stepper's from where it is.
+  const int32_t here = board::kServoLeadscrew ? leadscrew::reference() : leadscrew::position();
   if (end == here) return error(PSTR("Z is here"));
   // K: um = K / 10; P: um = 25400 / (P / 10000).
   const am::Pitch p = b.has('K') ? am::Pitch{uint32_t(pitch), 10} : am::Pitch{254000000ul, uint32_t(pitch)};
@@ -133,6 +136,7 @@ void encoder(const am::GcodeBlock& b) {
   if (!b.has('C') || !b.has('E') || !whole(b, 'C', 1, 16383, lines) || !whole(b, 'E', 1, 4, edges) ||
       (edges != 1 && edges != 4))
     return error(PSTR("ENCODER needs C1..16383, E1 or E4"));
+  if (board::kServoLeadscrew && edges == 4) return error(PSTR("E4 needs INT0, the servo's"));
   if (!leadscrew::set_encoder(edges == 4, uint16_t(lines))) return error(refusal_text(leadscrew::Refusal::busy));
   ok();
 }
@@ -161,6 +165,10 @@ void status() {
   hal::uart::write_u32(leadscrew::lost_counts());
   hal::uart::write_P(PSTR(" last="));
   hal::uart::write_P(kStops + 10 * uint8_t(leadscrew::last_stop()));
+  if (board::kServoLeadscrew && !leadscrew::busy()) {  // the last motion's, once the motor stands
+    hal::uart::write_P(PSTR(" slip="));
+    hal::uart::write_i32(leadscrew::last_slip());
+  }
   hal::uart::write('\n');
   ok();
 }

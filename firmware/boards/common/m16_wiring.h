@@ -10,7 +10,8 @@
 // by no part of the leadscrew. Motor encoder INT0 (PD2), spindle encoder INT1
 // (PD3), spindle index PD6, limit switch PD7 (normally high, pulled up),
 // L298 enable PWM on OC1A (PD5). The thesis put the L298 direction on
-// PD0/PD1, which are the UART here. PC2..PC5 need JTAG off (main() does that
+// PD0/PD1, which are the UART here: the m16-servo (firmware/boards/
+// m16-servo.h) puts them on PC0/PC1, the stepper's pins it does not use. PC2..PC5 need JTAG off (main() does that
 // on every ATmega16/32).
 #pragma once
 #include "../../../hal/avr/claims.h"
