@@ -98,107 +98,9 @@
 #include "fixed_number.h"
 #include "gcode_arithmetic.h"
 #include "gcode_parser.h"
+#include "gcode_state.h"
 
 namespace am {
-
-// M350 modes an axis accepts, one bit per mode number.
-constexpr uint8_t kModeWave = 1;       // 0
-constexpr uint8_t kModeTwoPhase = 2;   // 1
-constexpr uint8_t kModeHalf = 4;       // 2
-constexpr uint8_t kModeMicro16 = 8;    // 16
-constexpr uint8_t kModeMicro32 = 16;   // 32
-constexpr uint8_t kModeMicro64 = 32;   // 64
-constexpr uint8_t kModesShield = 63;   // Motor Shield steppers: all six
-constexpr uint8_t kModesUnipolar = 7;  // ULN2003: wave, two-phase, half
-
-constexpr uint8_t kNoAxis = 0xFF;
-
-struct GcodeAxis {
-  char letter;           // 'X', 'Y', 'Z', 'E', 'U', 'A', 'B' or 'C'
-  uint8_t modes;         // kMode* bits; 0: no excitation modes (step/dir)
-  uint32_t steps_per_m;  // position units (steps) per metre of travel
-};
-
-enum class Motion : uint8_t { rapid, linear, arc_cw, arc_ccw };  // G0 G1 G2 G3
-enum class Plane : uint8_t { xy, zx, yz };                        // G17 G18 G19
-
-struct GcodeModal {
-  Motion motion;
-  Plane plane;
-  bool incremental;  // G91
-  bool inches;       // G20
-  bool e_relative;   // M83, or G91 until the next M82
-  int32_t feed;      // 1/10000 mm/min; 0 until the first F
-};
-
-struct GcodeAxisState {
-  int32_t coord;   // program position, 1/10000 mm
-  int32_t offset;  // G92 offset, steps
-  int32_t steps;   // machine position, steps
-};
-
-template <uint8_t N>
-struct GcodeState {
-  GcodeModal modal;
-  GcodeAxisState axis[N];
-};
-
-enum class GcodeActionKind : uint8_t {
-  none, move, arc, dwell, set_position, report_position, enable, release, wait, set_mode, program_end, heater, home,
-  unlock,
-};
-
-// The highest target a heater code takes: Marlin's HEATER_0_MAXTEMP (275 C,
-// core/thermal/safety.h) less HOTEND_OVERSHOOT (15 C), in 0.01 C.
-constexpr int16_t kGcodeMaxTarget = 26000;
-constexpr int16_t kGcodeAutotuneDefault = 15000;  // M303 without S: 150 C (Marlin)
-constexpr uint8_t kGcodeAutotuneCycles = 5;       // M303 without C (Marlin)
-
-// What a heater M-code asks (GcodeActionKind::heater, see Heater codes).
-struct GcodeHeaterCommand {
-  GcodeCode code;       // m104 m105 m108 m109 m155 m301 m303 m500
-  bool wait_cooling;    // M109 R
-  uint8_t gains_given;  // M301: bit 0 P, 1 I, 2 D
-  uint8_t count;        // M155: seconds; M303: cycles
-  int16_t target;       // M104 M109 M303: 0.01 C
-  uint32_t gains[3];    // M301: P I D, thousandths
-};
-
-template <uint8_t N>
-struct GcodeAction {
-  GcodeActionKind kind;
-  uint8_t axes;              // bit i: the line named axis i
-  bool rapid;                // move: G0
-  bool clockwise;            // arc: G2
-  uint8_t plane_axis[3];     // arc: first, second plane axis, normal (kNoAxis)
-  int32_t target[N];         // machine position after the line, steps
-  int32_t coord[N];          // program position after the line, 1/10000 mm
-  int32_t feed;              // move/arc: 1/10000 mm/min
-  int32_t centre[2];         // arc: centre - start, steps
-  int32_t centre_length[2];  // arc: centre - start, 1/10000 mm
-  int32_t radius;            // arc: 1/10000 mm
-  uint32_t dwell_ms;         // dwell
-  uint8_t mode[N];           // set_mode: M350 mode per named axis
-  GcodeHeaterCommand heater;  // heater
-};
-
-namespace gcode_detail {
-
-// The plane's axis letters: first | second << 8 | normal << 16.
-inline uint32_t plane_axes(Plane p) {
-  return p == Plane::xy   ? 'X' | uint32_t('Y') << 8 | uint32_t('Z') << 16
-         : p == Plane::zx ? 'Z' | uint32_t('X') << 8 | uint32_t('Y') << 16
-                          : 'Y' | uint32_t('Z') << 8 | uint32_t('X') << 16;
-}
-
-// The plane's offset letters: first | second << 8.
-inline uint16_t plane_offsets(Plane p) {
-  return p == Plane::xy   ? uint16_t('I' | 'J' << 8)
-         : p == Plane::zx ? uint16_t('K' | 'I' << 8)
-                          : uint16_t('J' | 'K' << 8);
-}
-
-}  // namespace gcode_detail
 
 template <uint8_t N, bool Arcs = true, bool Heater = true>
 class GcodeInterpreter {
@@ -433,49 +335,8 @@ GcodeError GcodeInterpreter<N, Arcs, Heater>::execute(const GcodeBlock& b, Gcode
   return GcodeError::none;
 }
 
-// The arc from state_ (start) to a.coord[] (end), into a; m: the line's modes.
-template <uint8_t N, bool Arcs, bool Heater>
-GcodeError GcodeInterpreter<N, Arcs, Heater>::arc(const GcodeBlock& b, const GcodeModal& m, GcodeAction<N>& a) const {
-  using namespace gcode_detail;
-  const uint32_t letters = plane_axes(m.plane);
-  const uint16_t offset_letters = plane_offsets(m.plane);
-  uint8_t idx[2];
-  int32_t d[2], o[2];  // chord and centre - start, 1/10000 mm
-  for (uint8_t k = 0; k < 2; ++k) {
-    const uint8_t i = idx[k] = index_of(char(letters >> (8 * k)));
-    if (i == kNoAxis) return GcodeError::no_such_axis;
-    if (!add_checked(a.coord[i], -state_.axis[i].coord, d[k])) return GcodeError::target_out_of_range;
-    const char letter = char(offset_letters >> (8 * k));
-    o[k] = 0;
-    if (b.has(letter) && !to_length(b.get(letter), m.inches, o[k])) return GcodeError::out_of_range;
-  }
-  uint32_t radius;
-  GcodeError e;
-  if (b.has('R')) {
-    int32_t r;
-    if (!to_length(b.get('R'), m.inches, r)) return GcodeError::out_of_range;
-    e = r_arc_centre(d, r, m.motion == Motion::arc_ccw, o, radius);
-  } else {
-    e = offset_arc_check(d, o, radius);
-  }
-  if (e != GcodeError::none) return e;
-  for (uint8_t k = 0; k < 2; ++k) {
-    const uint8_t i = idx[k];
-    const GcodeAxisState& start = state_.axis[i];
-    int32_t centre, steps;
-    if (!add_checked(start.coord, o[k], centre) || !machine_steps(i, centre, start.offset, steps) ||
-        !add_checked(steps, -start.steps, a.centre[k]))
-      return GcodeError::target_out_of_range;
-    a.centre_length[k] = o[k];
-    a.plane_axis[k] = i;
-  }
-  a.clockwise = m.motion == Motion::arc_cw;
-  a.plane_axis[2] = index_of(char(letters >> 16));
-  a.radius = int32_t(radius);
-  return GcodeError::none;
-}
-
 }  // namespace am
 
-// The heater codes' GcodeInterpreter::heater(), apart (one concern a file).
+// GcodeInterpreter::arc() and heater(), apart (one concern a file).
+#include "gcode_arc_words.h"
 #include "gcode_heater_codes.h"
