@@ -28,13 +28,20 @@ constexpr uint8_t a_pos = 0x1, b_pos = 0x2, a_neg = 0x4, b_neg = 0x8, off = 0x0;
 // Coil pattern of each of the 8 half-step states: the one definition of the
 // cycle (the shield's flash tables are built from it at compile time). A
 // table, not a chain of comparisons, since the step interrupt calls this on
-// every coil-driven step; at namespace scope, because avr-gcc copies a
-// function-local constexpr array onto the stack on every call.
-constexpr uint8_t kHalfStepPatterns[8] = {
-    coil::a_pos,          coil::a_pos | coil::b_pos, coil::b_pos,          coil::b_pos | coil::a_neg,
-    coil::a_neg,          coil::a_neg | coil::b_neg, coil::b_neg,          coil::b_neg | coil::a_pos};
+// every coil-driven step; not function-local, because avr-gcc copies a
+// function-local constexpr array onto the stack on every call; a template's
+// member, because a namespace-scope constexpr array is one copy in RAM per
+// file that indexes it (two on the m16: C++14 has no inline variables).
+template <typename = void>
+struct HalfStepTable {
+  static constexpr uint8_t patterns[8] = {
+      coil::a_pos,          coil::a_pos | coil::b_pos, coil::b_pos,          coil::b_pos | coil::a_neg,
+      coil::a_neg,          coil::a_neg | coil::b_neg, coil::b_neg,          coil::b_neg | coil::a_pos};
+};
+template <typename T>
+constexpr uint8_t HalfStepTable<T>::patterns[8];
 
-constexpr uint8_t half_step_pattern(uint8_t index) { return kHalfStepPatterns[index & 7]; }
+constexpr uint8_t half_step_pattern(uint8_t index) { return HalfStepTable<>::patterns[index & 7]; }
 
 class PhaseSequencer {
  public:
