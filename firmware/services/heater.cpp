@@ -10,6 +10,7 @@
 #include "../../hal/avr/adc.h"
 #include "../../hal/avr/eeprom.h"
 #include "../../hal/avr/uart.h"
+#include "../apps/cnc/reply.h"
 #include "../board.h"
 #include "../engine/clock.h"
 
@@ -65,12 +66,28 @@ bool halted;  // the fault latched and its line went out
 uint32_t next_sample, now_ms;
 uint32_t report_period, next_report;  // ticks; 0: no auto-report
 
+// The fault's line, once: Marlin's `Error:<fault>, ...`; in grbl style an
+// info line (`error:` is an answer to a line there, and none is pending).
 void halt() {
   halted = true;
   target_ = 0;
-  hal::uart::write_P(PSTR("Error:"));
+  if (reply::kMarlin) hal::uart::write_P(PSTR("Error:"));
+  else reply::info_begin();
   hal::uart::write_P(fault_text());
-  hal::uart::write_P(PSTR(", heater halted until reset\n"));
+  hal::uart::write_P(PSTR(", heater halted until reset"));
+  if (reply::kMarlin) hal::uart::write('\n');
+  else reply::info_end();
+}
+
+// `T:<cur> /<target> @:<duty>`, without a line end.
+void write_status() {
+  hal::uart::write_P(PSTR("T:"));
+  if (reading_.ok()) write_centi(reading_.centi);
+  else hal::uart::write_P(reading_.state == am::SensorState::open ? PSTR("open") : PSTR("shorted"));
+  hal::uart::write_P(PSTR(" /"));
+  write_centi(target());
+  hal::uart::write_P(PSTR(" @:"));
+  hal::uart::write_u32(duty_);
 }
 
 void convert() {
@@ -122,10 +139,7 @@ void poll() {
     hal::adc::start();
   }
   if (clock::due(next_sample, clock::ms(kPeriodMs))) sample_period();
-  if (report_period && clock::due(next_report, report_period)) {
-    write_status();
-    hal::uart::write('\n');
-  }
+  if (report_period && clock::due(next_report, report_period)) write_status_line();
 }
 
 bool set_target(int16_t centi) {
@@ -181,14 +195,11 @@ void write_centi(int32_t c) {
   hal::uart::write(uint8_t('0' + m % 10));
 }
 
-void write_status() {
-  hal::uart::write_P(PSTR("T:"));
-  if (reading_.ok()) write_centi(reading_.centi);
-  else hal::uart::write_P(reading_.state == am::SensorState::open ? PSTR("open") : PSTR("shorted"));
-  hal::uart::write_P(PSTR(" /"));
-  write_centi(target());
-  hal::uart::write_P(PSTR(" @:"));
-  hal::uart::write_u32(duty_);
+void write_status_line() {
+  if (!reply::kMarlin) reply::info_begin();
+  write_status();
+  if (reply::kMarlin) hal::uart::write('\n');
+  else reply::info_end();
 }
 
 }  // namespace heater

@@ -63,8 +63,10 @@ bool autotune_end(bool apply);
 const am::RelayAutotune* tuning();  // nullptr while no autotune is on
 
 void auto_report(uint8_t seconds);  // 0: off
-// `T:<cur> /<target> @:<duty>` without the line end.
-void write_status();
+// The status `T:<cur> /<target> @:<duty>` as a line of its own, in the
+// board's style (docs/heater.md): as it is in Marlin's, `[MSG:...]` in
+// grbl's (a grbl host takes any other line for an answer or ignores it).
+void write_status_line();
 void write_centi(int32_t hundredths);  // "-12.34"
 
 }  // namespace heater

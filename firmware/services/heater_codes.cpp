@@ -23,12 +23,20 @@ void write_gain(const char* progmem_label, uint32_t milli) {
   write_centi(int32_t((milli + 5) / 10));
 }
 
-void write_gains(const char* progmem_head, const am::PidGains& g) {
-  hal::uart::write_P(progmem_head);
+// The gains after a head: Marlin's own line (`echo: p:.. i:.. d:..` and the
+// like), or `[MSG:<label>p:.. i:.. d:..]` in grbl style.
+void write_gains(const char* progmem_marlin_head, const char* progmem_grbl_label, const am::PidGains& g) {
+  if (reply::kMarlin) {
+    hal::uart::write_P(progmem_marlin_head);
+  } else {
+    reply::info_begin();
+    hal::uart::write_P(progmem_grbl_label);
+  }
   write_gain(PSTR("p:"), g.kp_milli);
   write_gain(PSTR(" i:"), g.ki_milli);
   write_gain(PSTR(" d:"), g.kd_milli);
-  hal::uart::write('\n');
+  if (reply::kMarlin) hal::uart::write('\n');
+  else reply::info_end();
 }
 
 bool reached(bool cooling_too) {
@@ -54,10 +62,7 @@ bool wait_turn(const am::GcodeHeaterCommand& c) {
   } else if (hal::uart::available()) {
     failed = PSTR("wait ended by the host");
   } else if (m303 ? tuning()->running() : !reached(c.wait_cooling)) {
-    if (clock::due(next_status, clock::ms(1000))) {
-      write_status();
-      hal::uart::write('\n');
-    }
+    if (clock::due(next_status, clock::ms(1000))) write_status_line();
     return false;
   } else if (m303) {
     const am::AutotuneState s = tuning()->state();
@@ -69,7 +74,7 @@ bool wait_turn(const am::GcodeHeaterCommand& c) {
   }
   waiting = false;
   if (m303 && autotune_end(apply)) {
-    write_gains(PSTR("PID Autotune finished: "), gains());
+    write_gains(PSTR("PID Autotune finished: "), PSTR("PID Autotune finished: "), gains());
     failed = nullptr;
   }
   if (failed) error(reply::code::heater, failed);
@@ -100,10 +105,14 @@ bool run(const am::GcodeHeaterCommand& c) {
     case am::GcodeCode::m303:
       if (!waiting && !autotune(c.target, c.count)) return refuse_halted();
       return wait_turn(c);
-    case am::GcodeCode::m105:
-      hal::uart::write_P(PSTR("ok "));
-      write_status();
-      hal::uart::write('\n');
+    case am::GcodeCode::m105:  // Marlin: `ok T:...`; grbl: the status, then `ok`
+      if (reply::kMarlin) {
+        hal::uart::write_P(PSTR("ok "));
+        write_status_line();
+      } else {
+        write_status_line();
+        ok();
+      }
       return true;
     case am::GcodeCode::m155:
       auto_report(c.count);
@@ -116,13 +125,13 @@ bool run(const am::GcodeHeaterCommand& c) {
       if (c.gains_given & 4) g.kd_milli = c.gains[2];
       // The interpreter checked the ranges set_gains() takes.
       set_gains(g);
-      write_gains(PSTR("echo: "), gains());
+      write_gains(PSTR("echo: "), PSTR(""), gains());
       ok();
       return true;
     }
     case am::GcodeCode::m500:
       store_gains();
-      write_gains(PSTR("echo:Settings Stored: "), gains());
+      write_gains(PSTR("echo:Settings Stored: "), PSTR("Settings Stored: "), gains());
       ok();
       return true;
     default:  // M108: nothing waits when it is read
