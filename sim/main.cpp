@@ -3,6 +3,7 @@
 // (--pty, pty_run.h), and reports what the motors did
 // (docs/simulator-report.md, docs/simulator.md).
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -294,6 +295,7 @@ int main(int argc, char** argv) {
       const uint64_t until = uint64_t((keys_end_s + 1) * machine.f_cpu());
       if (until < budget) end = machine.run([] { return false; }, until);
     }
+    double wall_seconds = -1;  // an --input run's host time (a --pty run reports its own)
     if (pty) {
       sim::PtyPort port(link);
       std::cerr << "avrmotion-sim: pty " << port.path() << (link.empty() ? "" : " (link " + link + ")") << std::endl;
@@ -314,16 +316,18 @@ int main(int argc, char** argv) {
         if (!s.empty()) machine.serial().add_line(s);
       }
       if (!vcd.empty()) trace.reset(new sim::VcdRecorder(machine, vcd, vcd_signals));
+      const auto wall_start = std::chrono::steady_clock::now();
       end = sim::run_script_with_progress(machine, budget, progress ? &std::cerr : nullptr);
+      wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     }
     if (trace) trace->finish();
     if (lcd_log && !pending_screen.empty()) log_screen();
     const sim::PtyStats* pty_stats = pty ? &stats : nullptr;
     if (report.empty()) {
-      sim::write_report(std::cout, machine, end, pty_stats, plant.get());
+      sim::write_report(std::cout, machine, end, pty_stats, plant.get(), wall_seconds);
     } else {
       std::ofstream out(report);
-      sim::write_report(out, machine, end, pty_stats, plant.get());
+      sim::write_report(out, machine, end, pty_stats, plant.get(), wall_seconds);
     }
     const std::string title = pty ? "pty" : input == "-" ? "" : input;
     if (!plot.empty()) sim::write_run_plot(plot, machine, sim::PlotLabel{title, end, plant.get()});

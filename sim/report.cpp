@@ -1,5 +1,7 @@
 #include "report.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 
@@ -64,7 +66,8 @@ std::string progress_line(Machine& m) {
   return buf;
 }
 
-void write_report(std::ostream& out, Machine& m, RunEnd end, const PtyStats* pty, const ThermalPlant* plant) {
+void write_report(std::ostream& out, Machine& m, RunEnd end, const PtyStats* pty, const ThermalPlant* plant,
+                  double wall_seconds) {
   const am::BoardDescriptor& b = m.board();
   SerialHost& serial = m.serial();
   out << "{\n";
@@ -118,6 +121,28 @@ void write_report(std::ostream& out, Machine& m, RunEnd end, const PtyStats* pty
     out << "  \"thermal\": {\"peak_c\": " << number(plant->peak_sensor_c())
         << ", \"final_c\": " << number(plant->sensor_c()) << ", \"final_block_c\": " << number(plant->block_c())
         << ", \"fault\": " << quoted(thermal_fault_name(plant->fault())) << "},\n";
+  }
+  // The motion: from the first step edge of any axis to the last (a print's
+  // time, heat-up and homing included once they step), and the extruder's
+  // net travel (the filament a print used; retractions come back).
+  uint64_t first_step = UINT64_MAX, last_step = 0;
+  double filament_mm = 0;
+  for (const AxisTrace& a : m.axes()) {
+    if (!a.step_cycles.empty()) {
+      first_step = std::min(first_step, a.step_cycles.front());
+      last_step = std::max(last_step, a.step_cycles.back());
+    }
+    if (a.name == 'E' && a.steps_per_mm > 0) filament_mm = a.steps() / a.steps_per_mm;
+  }
+  const bool moved = first_step != UINT64_MAX;
+  out << "  \"motion\": {\"first_step_s\": " << number(moved ? double(first_step) / b.f_cpu : 0)
+      << ", \"last_step_s\": " << number(moved ? double(last_step) / b.f_cpu : 0)
+      << ", \"motion_s\": " << number(moved ? double(last_step - first_step) / b.f_cpu : 0)
+      << ", \"filament_mm\": " << number(filament_mm) << "},\n";
+  if (wall_seconds >= 0) {
+    const double simulated = double(m.cycles()) / b.f_cpu;
+    out << "  \"wall_seconds\": " << number(wall_seconds) << ",\n";
+    out << "  \"simulated_per_wall\": " << number(wall_seconds > 0 ? simulated / wall_seconds : 0) << ",\n";
   }
   out << "  \"stack_bytes\": " << m.stack_bytes() << ",\n";
   out << "  \"starvations\": " << m.starvations() << (pty ? ",\n" : "\n");

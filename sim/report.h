@@ -13,9 +13,10 @@ struct PtyStats;
 
 // `pty` (a --pty run) adds the "pty" object: sessions, bytes each way, the
 // pacing figures (docs/simulator-report.md); `plant`, the hot end attached
-// to a board with a heater, the "thermal" key.
+// to a board with a heater, the "thermal" key; `wall_seconds` >= 0, the
+// host's time for the run, "wall_seconds" and "simulated_per_wall".
 void write_report(std::ostream& out, Machine& m, RunEnd end, const PtyStats* pty = nullptr,
-                  const ThermalPlant* plant = nullptr);
+                  const ThermalPlant* plant = nullptr, double wall_seconds = -1);
 
 // The report's name for how a run ended ("done", "timeout", "cpu_stopped",
 // "interrupted"); the picture's title uses it too.

@@ -189,6 +189,13 @@ TEST(Printcore, ASlicerPrintStreamsThroughThePtyWithAResendAndEndsExactly) {
   EXPECT_EQ(report_number(json, "Z", "steps"), expected_steps('Z', print.z_um));
   EXPECT_EQ(report_number(json, "E", "steps"), double(print.e_steps));
   EXPECT_EQ(expected_steps('E', 1000), 1000);  // the E count above assumes 1000 steps/mm
+  // The print's figures: the filament is the extruder's net travel, the
+  // motion lies within the run.
+  EXPECT_DOUBLE_EQ(report_number(json, "motion", "filament_mm"), double(print.e_steps) / 1000);
+  EXPECT_GT(report_number(json, "motion", "motion_s"), 0.0);
+  EXPECT_LE(report_number(json, "motion", "last_step_s"), report_number(json, "", "seconds"));
+  EXPECT_NEAR(report_number(json, "motion", "last_step_s") - report_number(json, "motion", "first_step_s"),
+              report_number(json, "motion", "motion_s"), 1e-4);
   std::printf("printcore print: %zu lines, %.1f s simulated in %.1f s wall\n", sent_lines,
               report_number(json, "", "seconds"), report_number(json, "pty", "wall_seconds"));
 }
