@@ -13,6 +13,7 @@
 #include "../apps/cnc/reply.h"
 #include "../board.h"
 #include "../engine/clock.h"
+#include "../engine/limits.h"
 
 namespace heater {
 namespace {
@@ -133,7 +134,19 @@ void store_gains() {
   hal::eeprom::update(kStoredAt, &stored, sizeof stored);
 }
 
+// A machine alarm (a hard limit, a failed homing, a reset in motion) turns
+// the heater off, as a fault does, but without latching: once unlocked, a
+// new target heats again (set_target() refuses one during the alarm, and
+// heater_codes.cpp ends an autotune's wait, which ends the tune).
+void alarm_off() {
+  target_ = 0;
+  duty_ = 0;
+  Hw::Pwm::set(0);  // now, not at the next sample
+  reply::info_P(PSTR("heater off: alarm"));
+}
+
 void poll() {
+  if (target_ > 0 && limits::alarm()) alarm_off();
   if (!hal::adc::busy()) {
     sampler.add(hal::adc::read10());
     hal::adc::start();
@@ -143,7 +156,7 @@ void poll() {
 }
 
 bool set_target(int16_t centi) {
-  if (halted) return false;
+  if (halted || limits::alarm()) return false;
   target_ = centi;
   return true;
 }
@@ -156,7 +169,7 @@ const am::PidGains& gains() { return control.pid.gains(); }
 __attribute__((noinline)) bool set_gains(const am::PidGains& g) { return control.pid.set_gains(g, kPeriodMs); }
 
 bool autotune(int16_t centi, uint8_t cycles) {
-  if (halted) return false;
+  if (halted || limits::alarm()) return false;
   am::AutotuneConfig config;
   config.target = tune_target = centi;
   config.cycles = cycles;

@@ -35,9 +35,12 @@ namespace heater {
 constexpr uint16_t kPeriodMs = am::HeaterPid::kDefaultPeriodMs;
 
 void init();
+// The loop's turn; in a machine alarm (firmware/engine/limits.h) it also
+// turns the heater off, once (`heater off: alarm`).
 void poll();
 
-// False (nothing changes) once a fault has latched.
+// False (nothing changes) once a fault has latched, or while the machine is
+// in an alarm.
 bool set_target(int16_t centi);
 int16_t target();  // what the heater holds now (an autotune's while it runs)
 am::TempReading reading();
@@ -54,7 +57,7 @@ bool set_gains(const am::PidGains& g);
 // set_gains() accepts them, Marlin's defaults otherwise.
 void store_gains();
 // Starts an autotune (target, cycles; the rest Marlin's defaults); false
-// once a fault has latched. While it is on, the PID rests with its gains
+// once a fault has latched or in an alarm. While it is on, the PID rests with its gains
 // kept; it ends with autotune_end(): `apply` and a finished tune whose gains
 // set_gains() takes put them in force (true), anything else keeps the old
 // gains (false). The target is 0 (off) afterwards.

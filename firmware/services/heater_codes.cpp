@@ -6,6 +6,8 @@
 #include "../../hal/avr/uart.h"
 #include "../apps/cnc/reply.h"
 #include "../engine/clock.h"
+#include "../engine/limits.h"
+#include "../engine/planner.h"
 #include "heater.h"
 
 namespace heater {
@@ -59,6 +61,8 @@ bool wait_turn(const am::GcodeHeaterCommand& c) {
   bool apply = false;
   if (fault() != am::HeaterFault::none) {
     failed = PSTR("heater halted");
+  } else if (limits::alarm()) {
+    failed = planner::refusal_text(planner::Refusal::alarm);
   } else if (hal::uart::available()) {
     failed = PSTR("wait ended by the host");
   } else if (m303 ? tuning()->running() : !reached(c.wait_cooling)) {
@@ -82,7 +86,13 @@ bool wait_turn(const am::GcodeHeaterCommand& c) {
   return true;
 }
 
+// A target refused (set_target(), autotune()): in an alarm, which keeps the
+// heater off until unlocked (heater.cpp), or after a fault, until reset.
 bool refuse_halted() {
+  if (limits::alarm()) {
+    error(reply::code::alarm_lock, planner::refusal_text(planner::Refusal::alarm));
+    return true;
+  }
   reply::error_begin();
   hal::uart::write_P(PSTR("heater halted ("));
   hal::uart::write_P(fault_text());

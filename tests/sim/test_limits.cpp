@@ -18,6 +18,7 @@
 #include "board_info.h"
 #include "endstops.h"
 #include "sim_fixture.h"
+#include "thermal_plant.h"
 
 namespace {
 
@@ -177,4 +178,49 @@ TEST(Limits, AMoveBeyondTheTravelOfAHomedAxisIsRefusedAndNothingMoves) {
   EXPECT_EQ(m.axis('X')->position, 1000);
   EXPECT_EQ(m.axis('Y')->position, 1000);
   EXPECT_EQ(m.axis('Z')->position, 4000);
+}
+
+// The printer: a hard limit while the hot end heats turns the heater off at
+// once (the main loop's next pass, not its next 125 ms sample) and says so;
+// a new target is refused in the alarm; once M999 has unlocked it, a target
+// heats again.
+TEST(Limits, AnAlarmTurnsTheHeaterOffUntilUnlocked) {
+  sim::Machine m(simtest::image("m32"));
+  sim::ThermalPlant plant(m, sim::ThermalParams());
+  sim::Endstops switches(m);
+  switches.set_position('X', -3000);
+  // G4 P1: a second for the heater to start (its PID samples every 125 ms).
+  for (const char* l : {"M104 S200", "G4 P1", "G1 X-10 F1200", "M400", "M104 S200", "M999", "M104 S200", "G4 P1"})
+    m.serial().add_line(l);
+  ASSERT_EQ(m.run_script(uint64_t(20 * m.f_cpu())), sim::RunEnd::done);
+  const auto& r_all = m.serial().responses();
+  ASSERT_EQ(r_all.size(), 8u);
+  const sim::Response* r = &r_all[1];  // r[k]: the k-th line after the dwell
+  EXPECT_EQ(said(r_all[0]), "ok");
+  EXPECT_EQ(said(r[3]), kAlarmRefusal);  // a target in the alarm
+  EXPECT_EQ(said(r[4]), "ok");           // M999
+  EXPECT_EQ(said(r[5]), "ok");           // heats again
+  EXPECT_EQ(count(m.serial().messages(), "echo:heater off: alarm"), 1);
+  // The heater pin: high (full power from 25 C) until the switch, low from
+  // within one sample period after it until the unlocked target.
+  const uint64_t trip = last_step(m) < r[4].answer_cycle ? m.axis('X')->step_cycles.back() : 0;
+  ASSERT_GT(trip, 0u);
+  // The heater PWM (488 Hz) runs until the switch; `off` is the falling edge
+  // after which the pin stays low until the unlocked M104.
+  const auto& pin = plant.heater_pin();
+  uint64_t last_rise_before_trip = 0, off = 0, on_again = 0;
+  for (const sim::PinEdge& e : pin) {
+    if (e.cycle <= trip && e.level) last_rise_before_trip = e.cycle;
+    if (e.cycle > trip && e.cycle < r[5].sent_cycle) {
+      if (!e.level) off = e.cycle;
+      else off = 0;  // high again in the alarm: no off yet
+    }
+    if (e.cycle > r[5].sent_cycle && e.level && !on_again) on_again = e.cycle;
+  }
+  EXPECT_GT(last_rise_before_trip, 0u);  // heating when the switch closed
+  ASSERT_GT(off, trip);
+  EXPECT_LE(off - trip, uint64_t(m.f_cpu() / 1000));  // 1 ms
+  EXPECT_GT(on_again, r[5].sent_cycle);
+  std::printf("heater off %.1f ms after the hard limit, on again %.1f ms after the unlocked M104\n",
+              double(off - trip) / m.f_cpu() * 1000, double(on_again - r[5].sent_cycle) / m.f_cpu() * 1000);
 }
