@@ -11,10 +11,7 @@
 //     plus one constant, at some cycle during the call.
 //   - The Uno's Timer0 still drives stepper 2's PWM, now at F_CPU / 8 / 256,
 //     and its overflow is that PWM's period.
-//   - What it costs: the vector's cycles and CPU share, how long it can
-//     hold the step vector off (its entry: response, JMP, SEI and the one
-//     instruction after SEI), how much later that makes a software step
-//     edge, its flash and RAM. Printed, and bounded.
+//   - What it costs: test_clock_cost.cpp; the probe: clock_probe.h.
 #include <avr_ioport.h>
 #include <sim_avr.h>
 #include <sim_interrupts.h>
@@ -31,158 +28,17 @@
 #include "main_context.h"
 #include "schedule.h"
 #include "sim_fixture.h"
+#include "clock_probe.h"
 
 namespace {
 
-struct ImageCase {
-  const char* image;
-  uint16_t prescaler;  // Timer0's, as the board claims it (firmware/boards/*.h)
-  const char* move;    // a move of the image's fastest axis at its top rate
-  char axis;
-  uint32_t steps;
-  int junk;  // NOP lines: their error answers keep the UART busy for the whole move
-};
+using clocktest::ImageCase;
+using clocktest::kImages;
+using clocktest::Probe;
+using clocktest::vector_jump_cycles;
+using clocktest::vectors_of;
+using clocktest::Vectors;
 
-const ImageCase kImages[] = {
-    {"uno", 8, "MOVE Z150000 F160000 A300000", 'Z', 150000, 600},  // 1.5 s, 0.4 s of it at 160 kHz
-    {"m32-direct", 64, "MOVE X24000 F40000 A800000", 'X', 24000, 280},  // 0.6 s; the m32 printer and mill images have no MOVE
-    {"m16", 64, "MOVE Z12000 F20000 A800000", 'Z', 12000, 280},    // 0.6 s
-    {"m16-8mhz", 64, "MOVE Z6000 F10000 A800000", 'Z', 6000, 90},  // 0.6 s at 38400 baud
-};
-
-// Vector numbers (the datasheets' interrupt vector tables).
-struct Vectors {
-  int step;   // TIMER1_COMPA
-  int clock;  // TIMER0_OVF
-};
-Vectors vectors_of(const std::string& mcu) {
-  if (mcu == "atmega328p") return {11, 16};
-  if (mcu == "atmega32") return {7, 11};
-  if (mcu == "atmega16") return {6, 9};
-  ADD_FAILURE() << "no vector table for " << mcu;
-  return {0, 0};
-}
-
-// Cycles of the jump in vector `v`'s table entry (4 bytes each on these
-// parts): JMP 3, or RJMP 2 where the linker's relaxation reached the
-// handler from the table (the ATmega16's 16 KB).
-int vector_jump_cycles(sim::Machine& m, int v) {
-  const uint8_t* f = m.avr()->flash + 4 * v;
-  const uint16_t word = uint16_t(f[0] | f[1] << 8);
-  if ((word & 0xF000) == 0xC000) return 2;
-  EXPECT_EQ(word & 0xFE0E, 0x940C) << "vector " << v << " is neither JMP nor RJMP";
-  return 3;
-}
-
-// A symbol's value and size from the image's symbol table.
-
-// Watches the clock's and the step engine's vectors through simavr's
-// interrupt IRQs: when TOV0 was set (the wrap), when each vector was entered
-// and left, clock_high after every overflow vector, and for every step
-// interrupt how long it waited and whether it nested in the overflow vector.
-class Probe {
- public:
-  struct StepIrq {
-    uint64_t pending = 0;  // the compare match (OCF1A set)
-    uint64_t entry = 0;    // its response began (simavr adds the 4 cycles before it says so)
-    bool nested = false;   // it interrupted the overflow vector
-    bool held = false;     // its match came while the overflow vector was being entered or ran (held())
-    uint64_t wait() const { return entry - pending; }
-  };
-
-  Probe(sim::Machine& m, const std::string& elf) : m_(m), v_(vectors_of(m.board().mcu)) {
-    high_addr_ = sim::read_data_symbol(elf, "clock_high");
-    avr_irq_t* clock = avr_get_interrupt_irq(m.avr(), uint8_t(v_.clock));
-    avr_irq_t* step = avr_get_interrupt_irq(m.avr(), uint8_t(v_.step));
-    avr_irq_register_notify(clock + AVR_INT_IRQ_PENDING, &Probe::on_clock_pending, this);
-    avr_irq_register_notify(clock + AVR_INT_IRQ_RUNNING, &Probe::on_clock_running, this);
-    avr_irq_register_notify(step + AVR_INT_IRQ_PENDING, &Probe::on_step_pending, this);
-    avr_irq_register_notify(step + AVR_INT_IRQ_RUNNING, &Probe::on_step_running, this);
-  }
-
-  uint32_t high() const {
-    const uint8_t* d = m_.avr()->data + high_addr_;
-    return uint32_t(d[0]) | uint32_t(d[1]) << 8 | uint32_t(d[2]) << 16;
-  }
-
-  std::vector<uint64_t> wraps;         // TOV0 set
-  std::vector<uint64_t> clock_entries;  // overflow vector entered (response began)
-  std::vector<uint64_t> clock_exits;    // and the end of its RETI
-  std::vector<uint32_t> high_after;    // clock_high at each of its RETIs
-  std::vector<StepIrq> steps;
-  uint64_t clock_exclusive = 0;  // cycles in the overflow vector, nested handlers excluded, RETI included
-
- private:
-  static void on_clock_pending(avr_irq_t*, uint32_t value, void* p) {
-    auto* self = static_cast<Probe*>(p);
-    const uint64_t now = self->m_.cycles();
-    // simavr raises the pending IRQ again on a flag already set; one wrap
-    // per cycle.
-    if (value && (self->wraps.empty() || self->wraps.back() != now)) self->wraps.push_back(now);
-  }
-  static void on_clock_running(avr_irq_t*, uint32_t value, void* p) {
-    auto* self = static_cast<Probe*>(p);
-    avr_t* avr = self->m_.avr();
-    const uint64_t now = self->m_.cycles();
-    if (value) {
-      const uint64_t response = uint64_t(2 + avr->address_size);
-      self->clock_entries.push_back(now - response);
-      self->clock_in_ = now - response;
-      self->nested_ = 0;
-    } else {
-      self->high_after.push_back(self->high());
-      // RETI's own 4 cycles are still to come.
-      self->clock_exits.push_back(now + 4);
-      self->clock_exclusive += now + 4 - self->clock_in_ - self->nested_;
-    }
-  }
-  static void on_step_pending(avr_irq_t*, uint32_t value, void* p) {
-    auto* self = static_cast<Probe*>(p);
-    if (value) self->step_pending_ = self->m_.cycles();
-  }
-  static void on_step_running(avr_irq_t*, uint32_t value, void* p) {
-    auto* self = static_cast<Probe*>(p);
-    avr_t* avr = self->m_.avr();
-    const uint64_t now = self->m_.cycles();
-    const avr_int_table_p table = &avr->interrupts;
-    if (value) {
-      StepIrq s;
-      s.pending = self->step_pending_;
-      s.entry = now - uint64_t(2 + avr->address_size);
-      // The vector it interrupted is still on top of simavr's stack of
-      // running vectors (the step vector is pushed after this callback).
-      s.nested = table->running_ptr > 0 && table->running[table->running_ptr - 1]->vector == self->v_.clock;
-      self->steps.push_back(s);
-      self->step_in_ = s.entry;
-    } else if (table->running_ptr > 0 && table->running[table->running_ptr - 1]->vector == self->v_.clock) {
-      // Leaving a step vector that nested in the overflow vector (simavr has
-      // popped it already: the overflow vector is on top again).
-      self->nested_ += now + 4 - self->step_in_;
-    }
-  }
-
- public:
-  // Marks the step interrupts whose match came after an overflow vector's
-  // response had begun (a match on that very cycle wins: the step vector
-  // comes first in the table) and before its RETI had ended: the ones the
-  // overflow vector could hold off.
-  void classify() {
-    for (StepIrq& s : steps) {
-      const auto e = std::lower_bound(clock_entries.begin(), clock_entries.end(), s.pending);
-      if (e == clock_entries.begin()) continue;
-      const size_t k = size_t(e - clock_entries.begin()) - 1;
-      s.held = k < clock_exits.size() && s.pending < clock_exits[k];
-    }
-  }
-
- private:
-  sim::Machine& m_;
-  Vectors v_;
-  uint16_t high_addr_ = 0;
-  uint64_t step_pending_ = 0, clock_in_ = 0, step_in_ = 0, nested_ = 0;
-};
-
-// A call of the image's clock::now() from the main loop's context
 // (main_context.h): the ticks it returned and the cycles it spanned.
 struct NowCall {
   uint32_t ticks;
@@ -397,135 +253,5 @@ TEST(Clock, UnoTimer0StillDrivesStepper2sPwmAtItsNewRate) {
       EXPECT_EQ(off, 0u) << "PWM periods that do not start on an overflow";
     }
   }
-}
-
-namespace {
-
-struct CostCase {
-  const char* image;
-  uint16_t prescaler;
-  const char* move;  // a quiet move of a software-pulsed axis at its top rate
-  char axis;
-  uint32_t steps, rate, accel;
-};
-
-// Software step edges only: a timer-pulsed edge (Uno Z) is made by the
-// compare match and cannot be late (tests/sim/test_step_timing.cpp). Each
-// rate is near the axis's top and its interval is chosen so that the
-// overflow lands on every phase of it, 8 or 16 cycles apart (the phase moves
-// by the overflow period modulo the interval, 384 of 400 or 1000 cycles, 48
-// of 1000 on the Uno), and so some step interrupts meet the vector whatever
-// the start-up time: with an interval of 800 the phases are 32 cycles apart,
-// wider than the vector, and a build can miss it altogether.
-const CostCase kCosts[] = {
-    {"uno", 8, "MOVE X6000 F16000 A300000", 'X', 6000, 16000, 300000},
-    {"m32-direct", 64, "MOVE X40000 F40000 A800000", 'X', 40000, 40000, 800000},
-    {"m16", 64, "MOVE Z16000 F16000 A800000", 'Z', 16000, 16000, 800000},
-    {"m16-8mhz", 64, "MOVE Z8000 F8000 A800000", 'Z', 8000, 8000, 800000},
-};
-
-}  // namespace
-
-TEST(Clock, CostsTheStepPathOnlyTheOverflowVectorsEntry) {
-  for (const CostCase& c : kCosts) {
-    SCOPED_TRACE(c.image);
-    const std::string elf = simtest::image(c.image);
-    const double period = 256.0 * c.prescaler;
-    double per_overflow = 0;
-    {
-      // Idle: the vector alone, nothing nests in it.
-      sim::Machine m(elf);
-      Probe probe(m, elf);
-      ASSERT_EQ(m.run([&] { return m.serial().banner_seen(); }, uint64_t(m.f_cpu())), sim::RunEnd::done);
-      const size_t idle_from = probe.clock_entries.size();
-      const uint64_t idle_cycles0 = probe.clock_exclusive;
-      ASSERT_TRUE(simtest::run_to_main(m, m.cycles() + uint64_t(m.f_cpu()) / 20, m.f_cpu()));
-      const size_t idle_n = probe.clock_entries.size() - idle_from;
-      ASSERT_GT(idle_n, 10u);
-      per_overflow = double(probe.clock_exclusive - idle_cycles0) / double(idle_n);
-      // 29 cycles with a JMP in the table, response and RETI included; 6
-      // more on every 256th.
-      const double cycles = 26.0 + vector_jump_cycles(m, vectors_of(m.board().mcu).clock);
-      EXPECT_GE(per_overflow, cycles);
-      EXPECT_LE(per_overflow, cycles + 6.0 * 2 / double(idle_n) + 0.01);
-    }
-
-    // A quiet move at the top software rate: which step interrupts the
-    // vector held off, by how much, and what that did to their edges.
-    sim::Machine m(elf);
-    Probe probe(m, elf);
-    m.serial().add_line(c.move);
-    const size_t first_step = 0;
-    ASSERT_EQ(m.run_script(uint64_t(m.f_cpu()) * 10), sim::RunEnd::done);
-    const std::vector<uint64_t>& edges = m.axis(c.axis)->step_cycles;
-    ASSERT_EQ(edges.size(), c.steps);
-    probe.classify();
-    uint64_t held_wait = 0, other_wait = 0;
-    size_t held = 0;
-    for (size_t i = first_step; i < probe.steps.size(); ++i) {
-      const Probe::StepIrq& s = probe.steps[i];
-      if (s.held) {
-        ++held;
-        held_wait = std::max(held_wait, s.wait());
-      } else {
-        other_wait = std::max(other_wait, s.wait());
-      }
-    }
-    // Every software edge against the schedule; its interrupt: the last
-    // step interrupt entered before it.
-    const std::vector<uint32_t> plan =
-        sim::planned_schedule(c.steps, sim::Ramp{m.f_cpu(), c.rate, c.accel});
-    ASSERT_EQ(plan.size(), c.steps);
-    int64_t held_late = INT64_MIN, other_late = INT64_MIN, other_early = INT64_MAX;
-    uint64_t due = edges[0];
-    size_t s = first_step;
-    for (size_t i = 1; i < edges.size(); ++i) {
-      due += plan[i];
-      while (s + 1 < probe.steps.size() && probe.steps[s + 1].entry < edges[i]) ++s;
-      const int64_t late = int64_t(edges[i]) - int64_t(due);
-      if (probe.steps[s].held) held_late = std::max(held_late, late);
-      else {
-        other_late = std::max(other_late, late);
-        other_early = std::min(other_early, late);
-      }
-    }
-    const double share = per_overflow / period;
-    std::printf(
-        "%s: overflow vector %.1f cycles every %.0f (%.2f %% of the CPU); %s at %u Hz: %zu of %zu step interrupts "
-        "met it, waited up to %llu cycles (others up to %llu); their edges %lld cycles after the schedule at worst, "
-        "the others' %lld..%lld: %lld cycles later at worst\n",
-        c.image, per_overflow, period, 100 * share, c.move, c.rate, held, probe.steps.size() - first_step,
-        (unsigned long long)held_wait, (unsigned long long)other_wait, (long long)(held ? held_late : 0),
-        (long long)other_early, (long long)other_late, (long long)(held ? held_late - other_late : 0));
-    // The vector can be in the way only with its entry: 4 cycles of response,
-    // JMP 3, SEI 1 and the PUSH after it (2), the match at least one cycle
-    // after its response began; after that the step vector nests in it.
-    ASSERT_GT(held, 0u) << "no step interrupt met the overflow vector: nothing measured";
-    EXPECT_LE(held_wait, 9u) << "the overflow vector holds the step vector off for more than its entry";
-    EXPECT_LE(held_late - other_late, 9);
-  }
-}
-
-TEST(Clock, FlashAndRamPerImage) {
-  // The vector, now() (in the vector's section, so every image has it),
-  // init() and the three bytes above TCNT0. The driver board has none.
-  for (const ImageCase& c : kImages) {
-    const std::string elf = simtest::image(c.image);
-    const Vectors v = vectors_of(sim::read_board_descriptor(elf).mcu);
-    const sim::ElfSymbol vec = sim::find_symbol(elf, "__vector_" + std::to_string(v.clock));
-    const sim::ElfSymbol now = sim::find_symbol(elf, "_ZN5clock3nowEv");
-    const sim::ElfSymbol init = sim::find_symbol(elf, "_ZN5clock4initEv");
-    const sim::ElfSymbol high = sim::find_symbol(elf, "clock_high");
-    ASSERT_TRUE(vec.found && now.found && high.found) << c.image;
-    // init() may be inlined into main().
-    std::printf("%s: clock flash %u B (vector %u, now() %u, init() %s), RAM %u B\n", c.image,
-                vec.size + now.size + init.size, vec.size, now.size,
-                init.found ? std::to_string(init.size).c_str() : "inlined", high.size);
-    EXPECT_EQ(high.size, 3u);
-    EXPECT_LE(vec.size + now.size + init.size, 160u);
-  }
-  const std::string driver = simtest::image("m32-driver");
-  EXPECT_FALSE(sim::find_symbol(driver, "clock_high").found);
-  EXPECT_FALSE(sim::find_symbol(driver, "_ZN5clock3nowEv").found);
 }
 

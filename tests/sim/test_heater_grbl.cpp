@@ -9,47 +9,35 @@
 #include <string>
 #include <vector>
 
-#include "sim_fixture.h"
-#include "thermal_plant.h"
+#include "heater_rig.h"
 
 namespace {
 
-constexpr double kHz = 16e6;
+using heatertest::HotEnd;
+using heatertest::kHz;
 
 const std::regex kGrblLine(R"(ok|error:\d+|ALARM:\d+|\[MSG:.*\]|<.*>|Grbl 1\.1h \['\$' for help\])");
 const std::regex kStatusMsg(R"(\[MSG:T:(\d+\.\d\d) /(\d+\.\d\d) @:(\d+)\])");
 
-struct GrblHotEnd {
-  sim::Machine m{simtest::image("m32-grbl")};
-  sim::ThermalPlant plant{m, sim::ThermalParams()};
-
-  void run_until(double t_s) {
-    const uint64_t end = uint64_t(t_s * kHz);
-    m.run([&] { return m.cycles() >= end; }, end - std::min(end, m.cycles()) + 1);
-  }
-  const std::vector<std::string>& got() { return m.serial().received(); }
-  double at(size_t i) { return double(m.serial().received_cycles()[i]) / kHz; }
-  // Index of the first received line equal to `line` from `from` on.
-  size_t find(const std::string& line, size_t from = 0) {
-    for (size_t i = from; i < got().size(); ++i)
-      if (got()[i] == line) return i;
-    return got().size();
-  }
-};
-
 TEST(HeaterGrbl, EveryHeaterLineIsAGrblLine) {
-  GrblHotEnd h;
-  for (const char* l : {"M105", "M104 S300", "M301 P30.5 I2 D80", "M155 S1", "M109 S50", "M155 S0", "M500"})
-    h.m.serial().add_line(l);
-  h.plant.inject_at(16.0, sim::ThermalFault::sensor_open);
+  HotEnd h(25, 40, "m32-grbl");
+  for (const char* l : {"M105", "M104 S300", "M301 P30.5 I2 D80", "M155 S1", "M109 S50", "M155 S0", "M500"}) h.send(l);
+  h.plant->inject_at(16.0, sim::ThermalFault::sensor_open);
   h.run_until(18.0);
-  h.m.serial().send_raw("M104 S60\n");
+  h.m->serial().send_raw("M104 S60\n");
   h.run_until(19.0);
-  const std::vector<std::string>& got = h.got();
+  const std::vector<std::string>& got = h.m->serial().received();
+  const auto at = [&](size_t i) { return double(h.m->serial().received_cycles()[i]) / kHz; };
+  // Index of the first received line equal to `line` from `from` on.
+  const auto find = [&](const std::string& line, size_t from) {
+    for (size_t i = from; i < got.size(); ++i)
+      if (got[i] == line) return i;
+    return got.size();
+  };
   for (size_t i = 0; i < got.size(); ++i) EXPECT_TRUE(std::regex_match(got[i], kGrblLine)) << i << ": " << got[i];
 
   // M105: its status line, then ok; the reading near the plant's 25 C.
-  const size_t banner = h.m.serial().banner_lines();
+  const size_t banner = h.m->serial().banner_lines();
   std::smatch s;
   ASSERT_TRUE(std::regex_match(got.at(banner), s, kStatusMsg)) << got.at(banner);
   EXPECT_NEAR(std::stod(s[1]), 25.0, 1.0);
@@ -63,19 +51,19 @@ TEST(HeaterGrbl, EveryHeaterLineIsAGrblLine) {
 
   // M155 S1 and M109 S50: status lines a second apart, the target 50 while
   // waiting, until the wait's ok; M155 S0's ok ends the reports.
-  const size_t wait_ok = h.find("ok", banner + 7);
+  const size_t wait_ok = find("ok", banner + 7);
   ASSERT_LT(wait_ok, got.size());
   std::vector<double> status_at;
   for (size_t i = banner + 7; i < wait_ok; ++i) {
     ASSERT_TRUE(std::regex_match(got[i], s, kStatusMsg)) << got[i];
     EXPECT_EQ(s[2], "50.00");
-    status_at.push_back(h.at(i));
+    status_at.push_back(at(i));
   }
   ASSERT_GE(status_at.size(), 10u);  // 25 -> 49 C takes well over 10 s
   double reached = -1;  // the plant's thermistor at 49 C (Marlin's 1 C window)
-  for (const sim::ThermalSample& t : h.plant.log())
+  for (const sim::ThermalSample& t : h.plant->log())
     if (reached < 0 && t.sensor_c > 49.0) reached = t.t_s;
-  EXPECT_NEAR(h.at(wait_ok), reached, 1.5);
+  EXPECT_NEAR(at(wait_ok), reached, 1.5);
   EXPECT_EQ(got.at(wait_ok + 1), "ok");  // M155 S0
   EXPECT_EQ(got.at(wait_ok + 2), "[MSG:Settings Stored: p:30.50 i:2.00 d:80.00]");
   EXPECT_EQ(got.at(wait_ok + 3), "ok");
@@ -90,17 +78,17 @@ TEST(HeaterGrbl, EveryHeaterLineIsAGrblLine) {
   const bool mintemp = line.find("MINTEMP") != std::string::npos;  // an open sensor may read below 5 C first
   const std::string fault = mintemp ? "MINTEMP triggered" : "Thermistor open";
   EXPECT_EQ(line, "[MSG:" + fault + ", heater halted until reset]");
-  EXPECT_GT(h.at(faults[0]), 16.0);
-  EXPECT_LE(h.at(faults[0]), 17.0);
-  const size_t refused = h.find("[MSG:heater halted (" + fault + "), reset to clear]", faults[0]);
+  EXPECT_GT(at(faults[0]), 16.0);
+  EXPECT_LE(at(faults[0]), 17.0);
+  const size_t refused = find("[MSG:heater halted (" + fault + "), reset to clear]", faults[0]);
   ASSERT_LT(refused + 1, got.size());
   EXPECT_EQ(got[refused + 1], "error:107");
-  const auto& pin = h.plant.heater_pin();
+  const auto& pin = h.plant->heater_pin();
   ASSERT_FALSE(pin.empty());
   EXPECT_FALSE(pin.back().level);
   EXPECT_LE(double(pin.back().cycle) / kHz, 17.0);
   std::printf("grbl style: %zu status lines during M109 S50 (%.1f s), fault line %.0f ms after the break\n",
-              status_at.size(), h.at(wait_ok), (h.at(faults[0]) - 16.0) * 1000);
+              status_at.size(), at(wait_ok), (at(faults[0]) - 16.0) * 1000);
 }
 
 }  // namespace

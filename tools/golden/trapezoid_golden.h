@@ -2,7 +2,7 @@
 // hashes of every StepRun of 16 fixed blocks and of 3000 pseudo-random
 // blocks chained through exit_speed(), as the chip computes them.
 //
-// The host test (tests/host/test_trapezoid.cpp, TrapezoidBitIdentity) must
+// The host test (tests/host/test_trapezoid_parts.cpp, TrapezoidBitIdentity) must
 // reproduce them bit for bit: any float expression rounded differently (an
 // a * b + c fused on a host with FMA, x87 evaluation, -ffast-math, a double
 // literal) changes them. A change of the generator changes them too: then
