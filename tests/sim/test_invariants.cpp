@@ -155,8 +155,10 @@ void check_axis(const AxisCase& c, uint64_t seed, size_t count) {
     for (uint64_t step : trace.step_cycles) {
       while (d < dir->size() && (*dir)[d].cycle <= step) ++d;
       changes = d;
-      if (d > 0) EXPECT_GE(step - (*dir)[d - 1].cycle, setup) << "a step " << step - (*dir)[d - 1].cycle
-                                                             << " cycles after a DIR change";
+      if (d > 0) {
+        EXPECT_GE(step - (*dir)[d - 1].cycle, setup) << "a step " << step - (*dir)[d - 1].cycle
+                                                     << " cycles after a DIR change";
+      }
     }
     EXPECT_GT(changes, moves.size() / 4) << "the sweep reverses often";
   }
