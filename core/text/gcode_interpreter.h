@@ -10,6 +10,8 @@
 //   and none of the arc arithmetic is linked (a machine that cannot run arcs
 //   keeps its flash). GcodeInterpreter<N, A, false> has no heater: every
 //   heater M-code is no_heater and their checks are not linked.
+//   GcodeInterpreter<N, A, H, true> reads G4's words as Marlin does (a
+//   printer host's dialect): P milliseconds, S seconds (S wins if both).
 //
 //   execute(block, action) applies one block. On GcodeError::none the state
 //   has moved on (modes, feed, G92 offsets, position) and `action` says what
@@ -41,7 +43,8 @@
 //                      (centre minus start, steps, per plane axis),
 //                      centre_length[] (the same in 1/10000 mm) and radius
 //                      (1/10000 mm). end == start (I/J form) is a full circle.
-//     dwell            G4 P<seconds>: dwell_ms (rounded)
+//     dwell            G4 P<seconds> (MarlinDwell: P<ms> or S<seconds>):
+//                      dwell_ms (rounded)
 //     set_position     G92: nothing moves; the changed offsets are in the state
 //     report_position  M114: print state().axis[i].coord (and .steps)
 //     enable, release  M17; M18 or M84 (every axis)
@@ -102,7 +105,7 @@
 
 namespace am {
 
-template <uint8_t N, bool Arcs = true, bool Heater = true>
+template <uint8_t N, bool Arcs = true, bool Heater = true, bool MarlinDwell = false>
 class GcodeInterpreter {
   static_assert(N >= 1 && N <= 8, "one bit per axis in GcodeAction::axes");
 
@@ -182,8 +185,8 @@ class GcodeInterpreter {
   GcodeState<N> state_;
 };
 
-template <uint8_t N, bool Arcs, bool Heater>
-GcodeError GcodeInterpreter<N, Arcs, Heater>::execute(const GcodeBlock& b, GcodeAction<N>& a) {
+template <uint8_t N, bool Arcs, bool Heater, bool MarlinDwell>
+GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell>::execute(const GcodeBlock& b, GcodeAction<N>& a) {
   using namespace gcode_detail;
   if (b.group(GcodeGroup::machine) >= GcodeCode::m104) return heater(b, a);
   constexpr uint32_t kArcWords =
@@ -228,11 +231,12 @@ GcodeError GcodeInterpreter<N, Arcs, Heater>::execute(const GcodeBlock& b, Gcode
   const bool arc_mode = m.motion >= Motion::arc_cw;
 
   // Required words, then unused ones.
-  if (dwell && !(words & gcode_letter_bit('P'))) return GcodeError::missing_dwell_time;
+  constexpr uint32_t kDwellWords = gcode_letter_bit('P') | (MarlinDwell ? gcode_letter_bit('S') : 0);
+  if (dwell && !(words & kDwellWords)) return GcodeError::missing_dwell_time;
   if (((set_position || set_mode) && !axis_words) || (arc_mode && actions == 0 && (words & kArcWords)))
     return GcodeError::missing_axis_word;
   uint32_t used = gcode_letter_bit('N') | gcode_letter_bit('F') | kGcodeAxisLetters;
-  if (dwell) used |= gcode_letter_bit('P');
+  if (dwell) used |= kDwellWords;
   if (move && arc_mode) {
     const uint16_t o = plane_offsets(m.plane);
     const uint32_t offset_words = gcode_letter_bit(char(o)) | gcode_letter_bit(char(o >> 8));
@@ -289,9 +293,11 @@ GcodeError GcodeInterpreter<N, Arcs, Heater>::execute(const GcodeBlock& b, Gcode
   a.feed = m.feed;
   GcodeActionKind kind = GcodeActionKind::none;
   if (dwell) {
-    const int32_t p = b.get('P');  // 1/10000 s
+    // 1/10000 s, or Marlin's P in 1/10000 ms (its S in seconds wins).
+    const bool ms = MarlinDwell && !b.has('S');
+    const int32_t p = b.get(ms ? 'P' : MarlinDwell ? 'S' : 'P');
     if (p < 0) return GcodeError::out_of_range;
-    a.dwell_ms = (uint32_t(p) + 5) / 10;
+    a.dwell_ms = ms ? (uint32_t(p) + 5000) / 10000 : (uint32_t(p) + 5) / 10;
     kind = GcodeActionKind::dwell;
   } else if (set_position) {
     kind = GcodeActionKind::set_position;

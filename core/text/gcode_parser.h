@@ -80,7 +80,7 @@ namespace am {
   X(axis_conflict, "axis words wanted by two codes")                         \
   X(multiple_actions, "more than one action on the line")                    \
   X(missing_axis_word, "code needs an axis word")                            \
-  X(missing_dwell_time, "G4 needs P (seconds)")                              \
+  X(missing_dwell_time, "G4 needs its time word")                            \
   X(missing_arc_words, "arc needs R or the plane's I/J/K")                   \
   X(arc_mixed_form, "arc takes R or I/J/K, not both")                        \
   X(unused_word, "word not used by any code on the line")                    \

@@ -66,11 +66,13 @@ template <typename A, typename = void>
 struct OwnUnits {
   static int32_t units_for(int32_t steps, bool) { return steps; }
   static constexpr uint8_t per_full_step = 1;
+  static constexpr bool own = false;
 };
 template <typename A>
 struct OwnUnits<A, decltype(void(A::units_per_full_step))> {
   static int32_t units_for(int32_t steps, bool idle) { return A::units_for(steps, idle); }
   static constexpr uint8_t per_full_step = A::units_per_full_step;
+  static constexpr bool own = true;
 };
 
 template <typename... Axes>
@@ -94,6 +96,7 @@ struct AxisSet<> {
   static uint32_t steps_per_m_at(uint8_t) { return 0; }
   static int32_t units_for(uint8_t, int32_t, bool) { return 0; }
   static uint8_t units_per_full_step_at(uint8_t) { return 1; }
+  static constexpr bool own_units = false;
 };
 
 template <typename First, typename... Rest>
@@ -102,6 +105,9 @@ struct AxisSet<First, Rest...> {
   static constexpr uint8_t count = 1 + sizeof...(Rest);
   // Mask bits of the axes pulsed by the timer hardware.
   static constexpr uint8_t timer_mask = uint8_t((TimerPulsed<First>::value ? 1 : 0) | (Tail::timer_mask << 1));
+  // Whether an axis counts in units of its own (units_for() then depends on
+  // whether it is idle); false: every unit is a step.
+  static constexpr bool own_units = OwnUnits<First>::own || Tail::own_units;
   static_assert((timer_mask & (timer_mask - 1)) == 0, "one OC1A: at most one timer-pulsed axis");
   // What the axes claim together: two axes on one PWM channel do not compile.
   using Claims = hal::ClaimSet<OwnClaims<First>::value, Tail::Claims::all>;

@@ -51,9 +51,10 @@ Refusal check(const Move& move) {
   // interpolator has said whether it steps: it moves alone.
   if (coordinated(mask) && (mask & board::Axes::timer_mask)) return Refusal::timer_axis_not_alone;
   // Both ways of counting the first step (the engine may go idle before
-  // the move is queued) must fit.
+  // the move is queued) must fit; they differ only on axes with units of
+  // their own.
   for (uint8_t i = 0; i < board::Axes::count; ++i) {
-    for (uint8_t at_rest = 0; at_rest < 2; ++at_rest) {
+    for (uint8_t at_rest = 0; at_rest < (board::Axes::own_units ? 2 : 1); ++at_rest) {
       int32_t end;
       if (__builtin_add_overflow(positions[i], board::Axes::units_for(i, move.steps[i], at_rest), &end))
         return Refusal::position_range;

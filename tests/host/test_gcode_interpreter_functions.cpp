@@ -51,6 +51,34 @@ TEST(GcodeInterpreter, Dwell) {
   EXPECT_EQ(a.dwell_ms, 0u);
 }
 
+// Marlin's G4 (the printer's dialect, GcodeInterpreter<..., true>): P in
+// milliseconds, S in seconds, S winning over P; no word at all is still
+// missing_dwell_time, and an unused word is still unused_word.
+TEST(GcodeInterpreter, MarlinDwellTakesMillisecondsOrSeconds) {
+  const am::GcodeAxis axes[] = {{'X', 0, 1000000}, {'Y', 0, 1000000}, {'Z', 0, 1000000}, {'E', 0, 1000000}};
+  am::GcodeInterpreter<4, false, true, true> g(axes);
+  am::GcodeAction<4> a;
+  const struct {
+    const char* line;
+    uint32_t ms;
+  } cases[] = {{"G4 P500", 500},         {"G4 P0.5", 1},       {"G4 P0.4999", 0},    {"G4 P214748.3647", 214748},
+               {"G4 S2", 2000},          {"G4 S0.0005", 1},    {"G4 S0", 0},         {"G4 P500 S1.5", 1500},
+               {"G4 S214748.3647", 214748365}};
+  for (const auto& c : cases) {
+    ASSERT_EQ(g.run(c.line, a), GcodeError::none) << c.line;
+    EXPECT_EQ(a.kind, GcodeActionKind::dwell) << c.line;
+    EXPECT_EQ(a.dwell_ms, c.ms) << c.line;
+  }
+  EXPECT_EQ(g.run("G4", a), GcodeError::missing_dwell_time);
+  EXPECT_EQ(g.run("G4 P-1", a), GcodeError::out_of_range);
+  EXPECT_EQ(g.run("G4 S-1", a), GcodeError::out_of_range);
+  EXPECT_EQ(g.run("G4 P1 R2", a), GcodeError::unused_word);
+  // The NGC/grbl reading keeps S out of G4.
+  am::GcodeInterpreter<4, false, true> ngc(axes);
+  EXPECT_EQ(ngc.run("G4 S2", a), GcodeError::missing_dwell_time);
+  EXPECT_EQ(ngc.run("G4 P1 S2", a), GcodeError::unused_word);
+}
+
 TEST(GcodeInterpreter, MachineFunctions) {
   const am::GcodeAxis shield[] = {{'X', am::kModesShield, 1600000},
                                   {'Y', am::kModesShield, 1600000},

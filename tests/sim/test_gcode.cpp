@@ -117,7 +117,7 @@ TEST(Gcode, RefusedLinesAreAnsweredOnceAndChangeNothing) {
       {"G7 X1", "unsupported G or M code", 20},
       {"G1 X1 F0", "feed rate must be above 0", 22},
       {"G1 A5", "no such axis on this board", 20},
-      {"G4", "G4 needs P (seconds)", 28},
+      {"G4", "G4 needs its time word", 28},
       {"G2 X3 Y2 I1 J0", "G2/G3 arcs are not in this board's image", 20},  // the printer only
       {"G1 X1 P2 F100", "word not used by any code on the line", 36},
       {"G1 X300000", "number out of range", 100},

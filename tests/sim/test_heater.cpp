@@ -116,7 +116,7 @@ TEST(Heater, HeatsTo200HoldsItAndRecoversFromAFanStep) {
 TEST(Heater, CommandsAnswerInMarlinsFormatAndRefuseBadInput) {
   HotEnd h;
   for (const char* l : {"M105", "M155 S1", "M104 S300", "M104 S-5", "M301 P1001", "M301 P30.5 I2 D80", "M301",
-                        "M104 S150", "G4 P3.2", "M400", "M155 S0", "M105", "M104 S0"})
+                        "M104 S150", "G4 S3.2", "M400", "M155 S0", "M105", "M104 S0"})
     h.send(l);
   h.run_until(6);
   ASSERT_TRUE(h.m->serial().finished());
@@ -200,7 +200,7 @@ TEST(Heater, AutotuneAt200GivesGainsThatMeetTheBounds) {
   std::snprintf(m301, sizeof m301, "M301 P%.2f I%.2f D%.2f", p, i, d);
   t.send(m301);
   t.send("M109 S200");
-  t.send("G4 P80");
+  t.send("G4 S80");
   t.run_until(125);
   double peak = 0, lo2 = 1e9, hi2 = -1e9, settled = 0;
   for (const sim::ThermalSample& s : t.plant->log()) {
@@ -233,7 +233,7 @@ TEST(Heater, PowerOnDrivesTheHeaterOffFirst) {
   EXPECT_EQ(d[kTCCR2], at_reset[3]);
   std::printf("heater pin a low output %llu cycles after reset\n", (unsigned long long)m.cycles());
   m.run([&] { return m.serial().banner_seen(); }, 16000000);
-  m.serial().add_line("G4 P1");
+  m.serial().add_line("G4 S1");
   ASSERT_EQ(m.run_script(uint64_t(2 * kHz)), sim::RunEnd::done);
   for (const sim::PinEdge& e : heater) EXPECT_FALSE(e.level);
   for (const sim::PinEdge& e : temp_ok) EXPECT_FALSE(e.level);
@@ -246,7 +246,7 @@ TEST(Heater, PowerOnDrivesTheHeaterOffFirst) {
 // without a heater the thermal options are a usage error.
 TEST(Heater, TheSimCommandTakesAPlantScenario) {
   const std::string job = simtest::temp_path("heater-job.txt"), json = simtest::temp_path("heater.json");
-  { std::ofstream(job) << "M104 S200\nG4 P3\n"; }
+  { std::ofstream(job) << "M104 S200\nG4 S3\n"; }
   const std::string sim = std::string("'") + AVRMOTION_SIM_EXE + "' --input '" + job + "'";
   const std::string cmd = sim + " --board m32 --report '" + json +
                           "' --thermal-initial 100 --thermal-fan 0.5@0.5 --thermal-fault open@1.5 2>/dev/null";

@@ -189,8 +189,8 @@ TEST(Limits, AnAlarmTurnsTheHeaterOffUntilUnlocked) {
   sim::ThermalPlant plant(m, sim::ThermalParams());
   sim::Endstops switches(m);
   switches.set_position('X', -3000);
-  // G4 P1: a second for the heater to start (its PID samples every 125 ms).
-  for (const char* l : {"M104 S200", "G4 P1", "G1 X-10 F1200", "M400", "M104 S200", "M999", "M104 S200", "G4 P1"})
+  // G4 S1 (Marlin: seconds): a second for the heater to start (its PID samples every 125 ms).
+  for (const char* l : {"M104 S200", "G4 S1", "G1 X-10 F1200", "M400", "M104 S200", "M999", "M104 S200", "G4 S1"})
     m.serial().add_line(l);
   ASSERT_EQ(m.run_script(uint64_t(20 * m.f_cpu())), sim::RunEnd::done);
   const auto& r_all = m.serial().responses();

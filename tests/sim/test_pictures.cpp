@@ -129,7 +129,7 @@ TEST(Pictures, AHotEndRowShowsItsTemperaturesSetpointAndDuty) {
   // thermistor climbs; the duty is full on while it is far below.
   sim::Machine m(simtest::image("m32"));
   sim::ThermalPlant plant(m);
-  for (const char* l : {"G4 P1", "M400", "M104 S200", "G4 P20"}) m.serial().add_line(l);
+  for (const char* l : {"G4 S1", "M400", "M104 S200", "G4 S20"}) m.serial().add_line(l);
   ASSERT_EQ(m.run_script(uint64_t(30) * m.f_cpu()), sim::RunEnd::done);
   const std::string path = simtest::temp_path("hot-end.svg");
   sim::write_run_plot(path, m, sim::PlotLabel{"hot end", sim::RunEnd::done, &plant});

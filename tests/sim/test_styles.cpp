@@ -99,7 +99,7 @@ TEST(Styles, MarlinReportsItselfWaitsForMotionAndKeepsTheHostWaiting) {
       {"G91", "ok"},
       {"G1 X5 F600", "ok"},  // 0.5 s of motion
       {"M400", "ok"},
-      {"G4 P5", "ok"},
+      {"G4 S5", "ok"},  // Marlin's G4: S seconds (P would be milliseconds)
       {"M400", "ok"},  // 5 s: Marlin's keep-alive every 2 s meanwhile
   };
   auto m = simtest::run("m32", lines_of(script), 20);

@@ -59,7 +59,8 @@ typename TableEntry<board::kSettings>::type AxisTable<AxisSet<A...>>::value[size
 // Built on first use, so a board without G-code links none of it. A board
 // without arcs (board::kArcs: flash) refuses G2/G3 whole (arcs_not_here),
 // one without a heater its M-codes (no_heater).
-using Interpreter = am::GcodeInterpreter<kAxes, board::kArcs, board::kHeater>;
+// A Marlin host's G4 P is milliseconds (G4 S seconds).
+using Interpreter = am::GcodeInterpreter<kAxes, board::kArcs, board::kHeater, reply::kMarlin>;
 Interpreter& interpreter() {
   static Interpreter instance(AxisTable<board::Axes>::value);
   return instance;
