@@ -146,25 +146,38 @@ inline uint32_t range_max(Kind k) {
 }
 inline Range range(Kind k) { return Range{range_min(k), range_max(k)}; }
 
-// round(v * mul / div) (v in thousandths of the unit, mul or div the
-// steps_per_m): 0xFFFFFFFF when it exceeds 2^31 - 1. One out-of-line copy
-// (every conversion below is a call of it with constants), on the one
-// out-of-line 64-bit arithmetic (core/text/fixed_number.h's scale_round()).
-[[gnu::noinline]] inline uint32_t scaled(uint32_t v, uint32_t mul, uint32_t div) {
+// round(v * steps_per_m / div) (v in thousandths of the unit): false when
+// it exceeds 2^31 - 1. One out-of-line copy of the 64-bit arithmetic on the
+// AVR (core/text/fixed_number.h's scale_round()).
+inline bool to_steps(uint32_t v, uint32_t steps_per_m, uint32_t div, uint32_t& out) {
   int32_t r;
-  return scale_round(int32_t(v), mul, div, r) ? uint32_t(r) : 0xFFFFFFFFu;
+  if (!scale_round(int32_t(v), steps_per_m, div, r)) return false;
+  out = uint32_t(r);
+  return true;
 }
 constexpr uint32_t kPerRate = 60000000ul, kPerLength = 1000000ul;  // mm/min and mm (or mm/s^2)
 // What the engine runs: steps/s, steps/s^2, steps (0xFFFFFFFF beyond 2^31 - 1).
-inline uint32_t rate_steps(uint32_t mm_per_min, uint32_t steps_per_m) { return scaled(mm_per_min, steps_per_m, kPerRate); }
-inline uint32_t length_steps(uint32_t mm, uint32_t steps_per_m) { return scaled(mm, steps_per_m, kPerLength); }
+inline uint32_t rate_steps(uint32_t mm_per_min, uint32_t steps_per_m) {
+  uint32_t s;
+  return to_steps(mm_per_min, steps_per_m, kPerRate, s) ? s : 0xFFFFFFFFu;
+}
+inline uint32_t length_steps(uint32_t mm, uint32_t steps_per_m) {
+  uint32_t s;
+  return to_steps(mm, steps_per_m, kPerLength, s) ? s : 0xFFFFFFFFu;
+}
 inline uint32_t accel_steps(uint32_t mm_per_s2, uint32_t steps_per_m) { return length_steps(mm_per_s2, steps_per_m); }
 // And back, for the defaults: the board's figure in the settings' unit,
 // rounded to the nearest thousandth (0xFFFFFFFF beyond 2^31 - 1). Back in
 // steps it is the board's figure again whenever 0.0005 of the unit is less
 // than half a step (every board here: 1000 steps/mm, exact).
-inline uint32_t rate_mm(uint32_t steps_per_s, uint32_t steps_per_m) { return scaled(steps_per_s, kPerRate, steps_per_m); }
-inline uint32_t length_mm(uint32_t steps, uint32_t steps_per_m) { return scaled(steps, kPerLength, steps_per_m); }
+inline uint32_t rate_mm(uint32_t steps_per_s, uint32_t steps_per_m) {
+  uint32_t v;
+  return to_steps(steps_per_s, kPerRate, steps_per_m, v) ? v : 0xFFFFFFFFu;
+}
+inline uint32_t length_mm(uint32_t steps, uint32_t steps_per_m) {
+  uint32_t v;
+  return to_steps(steps, kPerLength, steps_per_m, v) ? v : 0xFFFFFFFFu;
+}
 inline uint32_t accel_mm(uint32_t steps_per_s2, uint32_t steps_per_m) { return length_mm(steps_per_s2, steps_per_m); }
 
 template <uint8_t Axes>
@@ -295,8 +308,8 @@ struct Layout {
         div = kPerRate;
         if (kSwitches && k != Kind::rate && hi > 0xFFFFu) hi = 0xFFFFu;
       }
-      const uint32_t s = scaled(v, spm, div);  // 0xFFFFFFFF beyond 2^31 - 1: above every hi
-      if (s < lo || s > hi) return Error::engine_limit;
+      uint32_t s;
+      if (!to_steps(v, spm, div, s) || s < lo || s > hi) return Error::engine_limit;
     }
     return Error::none;
   }
