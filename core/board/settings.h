@@ -79,52 +79,70 @@ struct Entry {
   uint8_t axis;  // for the per-axis kinds; 0 otherwise
 };
 
-inline uint16_t number(Entry e) {
-  const Kind k = e.kind;
-  const uint16_t base = k == Kind::junction      ? 11
-                        : k == Kind::steps       ? 100
-                        : k == Kind::rate        ? 110
-                        : k == Kind::accel       ? 120
-                        : k == Kind::travel      ? 130
-                        : k == Kind::protocol    ? 200
-                        : k == Kind::locate      ? 240
-                        : k == Kind::seek        ? 250
-                        : k == Kind::pull_off    ? 270
-                        : k >= Kind::gain_p      ? uint16_t(300 + uint8_t(k) - uint8_t(Kind::gain_p))
-                                                 : uint16_t(20 + uint8_t(k) - uint8_t(Kind::soft_limits));
-  return uint16_t(base + e.axis);
+// The tables below stay in flash on the AVR: the firmware defines
+// AM_SETTINGS_FLASH as PROGMEM and AM_SETTINGS_BYTE(p) as pgm_read_byte(p)
+// before including this header (firmware/services/settings.cpp).
+#ifndef AM_SETTINGS_FLASH
+#define AM_SETTINGS_FLASH
+#endif
+#ifndef AM_SETTINGS_BYTE
+#define AM_SETTINGS_BYTE(p) (*(p))
+#endif
+
+// Per kind, in flash: grbl's number (less the axis), low byte and high
+// byte, and one byte of traits: bit 7 read-only, bit 6 whole (no
+// decimals), bits 4-5 the least value (0, 1 or 1000), bits 0-3 the power
+// of ten that is the greatest (15: none, 0xFFFFFFFF). One table and a few
+// reads instead of a comparison chain per trait.
+template <bool = true>
+struct KindRows {
+  static constexpr uint8_t kReadOnly = 0x80, kWhole = 0x40, kNoMax = 0x0F;
+  static const uint8_t row[uint8_t(Kind::end)][3];
+};
+// (270 = 14 + 256, 300..302 = 44..46 + 256.) A template's member: one copy
+// in the image, defined in the header.
+template <bool B>
+const uint8_t KindRows<B>::row[uint8_t(Kind::end)][3] AM_SETTINGS_FLASH = {
+    {11, 0, 0x14},  {20, 0, 0x40},  {21, 0, 0xCF},  {22, 0, 0x40},  {23, 0, 0xCF}, {100, 0, 0x27},
+    {110, 0, 0x29}, {120, 0, 0x29}, {130, 0, 0x28}, {200, 0, 0xCF}, {240, 0, 0x29}, {250, 0, 0x29},
+    {14, 1, 0x06},  {44, 1, 0x06},  {45, 1, 0x06},  {46, 1, 0x07}};
+using KindTable = KindRows<>;
+inline uint8_t traits(Kind k) { return AM_SETTINGS_BYTE(&KindTable::row[uint8_t(k)][2]); }
+
+[[gnu::noinline]] inline uint16_t number(Entry e) {
+  const uint8_t* r = KindTable::row[uint8_t(e.kind)];
+  return uint16_t((AM_SETTINGS_BYTE(r) | AM_SETTINGS_BYTE(r + 1) << 8) + e.axis);
 }
 
 // Three decimals for the measures, none for flags, masks and the protocol.
-inline uint8_t digits(Kind k) {
-  return (k >= Kind::soft_limits && k <= Kind::homing_dir) || k == Kind::protocol ? 0 : 3;
-}
+inline uint8_t digits(Kind k) { return traits(k) & KindTable::kWhole ? 0 : 3; }
 
-inline bool read_only(Kind k) { return k == Kind::hard_limits || k == Kind::homing_dir || k == Kind::protocol; }
+inline bool read_only(Kind k) { return traits(k) & KindTable::kReadOnly; }
 
 struct Range {
   uint32_t min, max;
 };
 // The range a value may be set to (a read-only one's: anything, it is not
-// settable). Two functions of immediates: a table of Range structs would
-// be copied into the AVR's RAM.
+// settable), from the kind's traits.
 inline uint32_t range_min(Kind k) {
-  return k == Kind::junction ? 1
-         : k == Kind::steps || k == Kind::rate || k == Kind::accel || k == Kind::locate || k == Kind::seek ||
-                 k == Kind::travel
-             ? 1000
-             : 0;
+  const uint8_t m = traits(k) >> 4 & 3;
+  return m == 2 ? 1000 : m;
 }
 inline uint32_t range_max(Kind k) {
-  return k == Kind::junction                          ? 10000
-         : k == Kind::soft_limits || k == Kind::homing ? 1
-         : k == Kind::steps                            ? 10000000
-         : k == Kind::rate || k == Kind::accel || k == Kind::locate || k == Kind::seek ? 1000000000
-         : k == Kind::travel                           ? 100000000
-         : k == Kind::pull_off                         ? 1000000
-         : k == Kind::gain_d                           ? 10000000
-         : k >= Kind::gain_p                           ? 1000000
-                                                       : 0xFFFFFFFFu;
+  uint8_t e = traits(k) & 0x0F;
+  if (e == KindTable::kNoMax) return 0xFFFFFFFFu;
+  uint32_t r = 1;
+  while (e--) r *= 10;
+  return r;
+}
+[[gnu::noinline]] inline bool in_range(Kind k, uint32_t v) {
+  const uint8_t t = traits(k), m = t >> 4 & 3;
+  if (v < (m == 2 ? 1000u : m)) return false;
+  uint8_t e = t & 0x0F;
+  if (e == KindTable::kNoMax) return true;
+  uint32_t r = 1;
+  while (e--) r *= 10;
+  return v <= r;
 }
 inline Range range(Kind k) { return Range{range_min(k), range_max(k)}; }
 
@@ -212,21 +230,40 @@ struct Layout {
   static constexpr uint8_t count(uint8_t k = 0) {
     return k == uint8_t(Kind::end) ? 0 : uint8_t(multiplicity(Kind(k)) + count(uint8_t(k + 1)));
   }
-  using Values = Block<count()>;
+  static constexpr uint8_t kCount = count();  // a constant: -Os calls a constexpr function at run time
+  using Values = Block<kCount>;
 
   // The j-th axis of a kind: every axis, or the j-th with a switch.
-  static uint8_t axis_of(Kind k, uint8_t j) {
-    if (k == Kind::steps || k == Kind::rate || k == Kind::accel) return j;
-    if (!(k == Kind::travel || k == Kind::locate || k == Kind::seek || k == Kind::pull_off)) return 0;
-    uint8_t a = 0;
-    for (;; ++a)
-      if ((SwitchMask >> a & 1) && j-- == 0) return a;
+  static constexpr uint8_t nth_switch(uint8_t j, uint8_t a = 0) {
+    return (SwitchMask >> a & 1) ? (j == 0 ? a : nth_switch(uint8_t(j - 1), uint8_t(a + 1)))
+                                 : nth_switch(j, uint8_t(a + 1));
   }
+  static constexpr uint8_t axis_of(Kind k, uint8_t j) {
+    return k == Kind::steps || k == Kind::rate || k == Kind::accel ? j
+           : k == Kind::travel || k == Kind::locate || k == Kind::seek || k == Kind::pull_off ? nth_switch(j)
+                                                                                               : 0;
+  }
+  static constexpr Entry entry(uint8_t i, uint8_t k = 0) {
+    return i < multiplicity(Kind(k)) ? Entry{Kind(k), axis_of(Kind(k), i)}
+                                     : entry(uint8_t(i - multiplicity(Kind(k))), uint8_t(k + 1));
+  }
+  // Every entry, made at compile time and kept in flash (two bytes each):
+  // at(i) reads its row.
+  template <uint8_t... I>
+  struct Rows {
+    static const uint8_t row[sizeof...(I) ? sizeof...(I) : 1][2];
+  };
+  template <uint8_t N, uint8_t... I>
+  struct MakeRows : MakeRows<uint8_t(N - 1), uint8_t(N - 1), I...> {};
+  template <uint8_t... I>
+  struct MakeRows<0, I...> {
+    using type = Rows<I...>;
+  };
+  using Entries = typename MakeRows<count()>::type;
 
   static Entry at(uint8_t i) {
-    uint8_t k = 0;
-    while (i >= multiplicity(Kind(k))) i = uint8_t(i - multiplicity(Kind(k++)));
-    return Entry{Kind(k), axis_of(Kind(k), i)};
+    const uint8_t* r = Entries::row[i];
+    return Entry{Kind(AM_SETTINGS_BYTE(r)), AM_SETTINGS_BYTE(r + 1)};
   }
 
   // The index of a kind's first entry: then axis a's (steps, rate, accel:
@@ -236,41 +273,50 @@ struct Layout {
   }
 
   static int16_t find(uint16_t n) {
-    for (uint8_t i = 0; i < count(); ++i)
+    for (uint8_t i = 0; i < kCount; ++i)
       if (number(at(i)) == n) return i;
     return -1;
   }
 
   static void seal(Values& b, uint8_t version) {
-    b.header = Header{kTag, version, count()};
+    b.header = Header{kTag, version, kCount};
     b.sum = checksum(&b, Values::kSummed);
   }
 
   // Every value within its range and every derived figure within the
-  // engine's limits.
+  // engine's limits. (The kinds a layout lacks are left out at compile
+  // time: the entries come from the flash table.)
   static Error validate(const Values& b, const EngineLimits<Axes>& limits) {
-    for (uint8_t i = 0; i < count(); ++i) {
+    for (uint8_t i = 0; i < kCount; ++i) {
       const Entry e = at(i);
+      const Kind k = e.kind;
       const uint32_t v = b.value[i];
-      if (v < range_min(e.kind) || v > range_max(e.kind)) return Error::out_of_range;
-      if (e.kind < Kind::rate || e.kind == Kind::protocol || e.kind >= Kind::gain_p) continue;
-      const uint32_t spm = b.value[first(Kind::steps) + e.axis];
-      const uint32_t top = limits.max_rate[e.axis];
-      const bool per_min = e.kind == Kind::rate || e.kind == Kind::locate || e.kind == Kind::seek;
-      const uint32_t s = per_min ? rate_steps(v, spm) : length_steps(v, spm);  // accel's scale is a length's
-      const bool fits = e.kind == Kind::rate       ? s >= 1 && s <= top
-                        : e.kind == Kind::accel    ? s >= 2 && s <= limits.max_accel
-                        : e.kind == Kind::travel   ? s >= 1 && s <= 0x7FFFFFFFu
-                        : e.kind == Kind::pull_off ? s <= 0xFFFFu
-                                                   : s >= 1 && s <= 0xFFFFu && s <= top;  // locate, seek
-      if (!fits) return Error::engine_limit;
+      if (!in_range(k, v)) return Error::out_of_range;
+      if (k < Kind::rate || k == Kind::protocol || k >= Kind::gain_p) continue;
+      constexpr uint8_t steps = first(Kind::steps);
+      const uint32_t spm = b.value[steps + e.axis];
+      uint32_t lo = 1, hi = limits.max_rate[e.axis], div = kPerLength;  // accel's scale is a length's
+      if (k == Kind::accel) {
+        lo = 2;  // the first step from rest must fit a segment
+        hi = limits.max_accel;
+      } else if (kSwitches && k == Kind::travel) {
+        hi = 0x7FFFFFFFu;
+      } else if (kSwitches && k == Kind::pull_off) {
+        lo = 0;
+        hi = 0xFFFFu;
+      } else {  // rate, locate, seek: per minute
+        div = kPerRate;
+        if (kSwitches && k != Kind::rate && hi > 0xFFFFu) hi = 0xFFFFu;
+      }
+      uint32_t s;
+      if (!to_steps(v, spm, div, s) || s < lo || s > hi) return Error::engine_limit;
     }
     return Error::none;
   }
 
   static Loaded examine(const Values& b, uint8_t version, const EngineLimits<Axes>& limits) {
     if (b.header.tag != kTag) return Loaded::blank;
-    if (b.header.version != version || b.header.count != count()) return Loaded::older;
+    if (b.header.version != version || b.header.count != kCount) return Loaded::older;
     if (b.sum != checksum(&b, Values::kSummed) || validate(b, limits) != Error::none) return Loaded::corrupt;
     return Loaded::ok;
   }
@@ -287,7 +333,7 @@ struct Layout {
     const NumberStatus s = parse_fixed(text, digits(k), v, point);
     if (s == NumberStatus::bad || (s == NumberStatus::ok && (*text != '\0' || (point && !digits(k)))))
       return Error::bad_number;
-    if (s != NumberStatus::ok || v < 0 || uint32_t(v) < range_min(k) || uint32_t(v) > range_max(k))
+    if (s != NumberStatus::ok || v < 0 || !in_range(k, uint32_t(v)))
       return Error::out_of_range;
     const uint32_t was = b.value[i];
     b.value[i] = uint32_t(v);
@@ -296,6 +342,11 @@ struct Layout {
     return e;
   }
 };
+
+template <uint8_t Axes, uint8_t SwitchMask, bool Heater>
+template <uint8_t... I>
+const uint8_t Layout<Axes, SwitchMask, Heater>::Rows<I...>::row[sizeof...(I) ? sizeof...(I) : 1][2] AM_SETTINGS_FLASH = {
+    {uint8_t(entry(I).kind), entry(I).axis}...};
 
 // `$<number>=<value>` into buf (at least 20 bytes): the value in its
 // kind's decimals. Returns the length.

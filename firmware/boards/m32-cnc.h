@@ -16,7 +16,7 @@ using Claims = hal::ClaimSet<kStepClock, kClock, hal::claim::uart, Axes::Claims:
 constexpr bool kRealtime = true;   // firmware/apps/cnc/realtime.h
 constexpr bool kCommands = false;  // G-code only
 // No settings in the EEPROM (kSettings, firmware/services/settings.h): they
-// need about 3.7 KB of flash, this image has 0.5 KB left (docs/settings.md).
+// need about 2.8 KB of flash, this image has 0.2 KB left (docs/settings.md).
 constexpr bool kGcode = true;  // the cnc program speaks G-code (docs/gcode.md)
 constexpr bool kArcs = true;   // G2/G3 as chords (docs/interpolation.md): about 7.5 KB of flash
 // The look-ahead ring (firmware/engine/path.h), 62 B a block: four blocks

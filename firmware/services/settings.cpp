@@ -5,6 +5,8 @@
 #include <avr/pgmspace.h>
 #include <string.h>
 
+#define AM_SETTINGS_FLASH PROGMEM
+#define AM_SETTINGS_BYTE(p) pgm_read_byte(p)
 #include "../../core/board/settings.h"
 #include "../../hal/avr/eeprom.h"
 #include "../../hal/avr/uart.h"
@@ -46,7 +48,8 @@ uint32_t top_rate(uint8_t axis) {
   return own ? own : board::kMaxStepRate;
 }
 
-EngineLimits<kAxes> engine() {
+// One out-of-line copy (read() and change() both need it).
+[[gnu::noinline]] EngineLimits<kAxes> engine() {
   EngineLimits<kAxes> e;
   for (uint8_t a = 0; a < kAxes; ++a) e.max_rate[a] = top_rate(a);
   e.max_accel = board::kMaxAccel;
@@ -69,30 +72,38 @@ uint8_t switch_of(uint8_t axis) {
   return k;
 }
 
-// The board header's figures, in the settings' units.
+// A homing kind's default: the board's figure of the axis's switch.
+uint32_t homing_default(Entry e, uint32_t spm) {
+  const HomingAxis h = board_homing(switch_of(e.axis));
+  return e.kind == Kind::homing_dir ? Endstops::max_end
+         : e.kind == Kind::travel   ? length_mm(h.travel, spm)
+         : e.kind == Kind::locate   ? rate_mm(h.locate_rate, spm)
+         : e.kind == Kind::seek     ? rate_mm(h.seek_rate, spm)
+         : e.kind == Kind::pull_off ? length_mm(h.pull_off, spm)
+                                    : 1;  // soft limits, hard limits, homing: on
+}
+
+// The board header's figures, in the settings' units. (The kinds of the
+// switches and the heater only where the board has them.)
 void defaults(Values& b) {
-  for (uint8_t i = 0; i < Table::count(); ++i) {
+  for (uint8_t i = 0; i < Table::kCount; ++i) {
     const Entry e = Table::at(i);
     const uint32_t spm = board::Axes::steps_per_m_at(e.axis);
-    const bool per_switch = e.kind == Kind::travel || e.kind >= Kind::locate;
-    const HomingAxis h = board_homing(Endstops::count && per_switch ? switch_of(e.axis) : 0);
     uint32_t v;
-    switch (e.kind) {
-      case Kind::junction: v = path::kJunctionDeviationUm; break;
-      case Kind::homing_dir: v = Endstops::max_end; break;
-      case Kind::steps: v = spm; break;
-      case Kind::rate: v = rate_mm(top_rate(e.axis), spm); break;
-      case Kind::accel: v = accel_mm(board::kDefaultAccel, spm); break;
-      case Kind::travel: v = length_mm(h.travel, spm); break;
-      case Kind::protocol: v = uint32_t(board::kProtocol); break;
-      case Kind::locate: v = rate_mm(h.locate_rate, spm); break;
-      case Kind::seek: v = rate_mm(h.seek_rate, spm); break;
-      case Kind::pull_off: v = length_mm(h.pull_off, spm); break;
-      case Kind::gain_p: v = 22200; break;  // Marlin's DEFAULT_Kp/Ki/Kd
-      case Kind::gain_i: v = 1080; break;
-      case Kind::gain_d: v = 114000; break;
-      default: v = 1; break;  // soft limits, hard limits, homing: on
-    }
+    if (e.kind == Kind::junction)
+      v = path::kJunctionDeviationUm;
+    else if (e.kind == Kind::steps)
+      v = spm;
+    else if (e.kind == Kind::rate)
+      v = rate_mm(top_rate(e.axis), spm);
+    else if (e.kind == Kind::accel)
+      v = accel_mm(board::kDefaultAccel, spm);
+    else if (e.kind == Kind::protocol)
+      v = uint32_t(board::kProtocol);
+    else if (board::kHeater && e.kind >= Kind::gain_p)
+      v = e.kind == Kind::gain_p ? 22200 : e.kind == Kind::gain_i ? 1080 : 114000;  // Marlin's DEFAULT_Kp/Ki/Kd
+    else
+      v = Endstops::count ? homing_default(e, spm) : 1;
     b.value[i] = v;
   }
 }
@@ -111,33 +122,48 @@ void store(Values& b) {
 
 // Axis a's value of a per-axis kind, switch k's of a per-switch kind, a
 // single kind's.
-uint32_t value(const Values& b, Kind kind, uint8_t a = 0) { return b.value[Table::first(kind) + a]; }
+template <Kind K>
+uint32_t value(const Values& b, uint8_t a = 0) {
+  constexpr uint8_t first = Table::first(K);
+  return b.value[first + a];
+}
 
 void apply(const Values& b) {
   for (uint8_t a = 0; a < kAxes; ++a) {
-    const uint32_t spm = value(b, Kind::steps, a);
+    const uint32_t spm = value<Kind::steps>(b, a);
     gcode::set_scale(a, spm);
-    path::set_axis(a, spm, uint32_t(rate_steps(value(b, Kind::rate, a), spm)),
-                   uint32_t(accel_steps(value(b, Kind::accel, a), spm)));
+    path::set_axis(a, spm, uint32_t(rate_steps(value<Kind::rate>(b, a), spm)),
+                   uint32_t(accel_steps(value<Kind::accel>(b, a), spm)));
   }
   gcode::rescale();
-  path::set_junction_um(value(b, Kind::junction));
+  path::set_junction_um(value<Kind::junction>(b));
   if (!Endstops::count) return;
-  limits::soft_limits = value(b, Kind::soft_limits) != 0;
-  limits::homing_enabled = value(b, Kind::homing) != 0;
+  limits::soft_limits = value<Kind::soft_limits>(b) != 0;
+  limits::homing_enabled = value<Kind::homing>(b) != 0;
   for (uint8_t k = 0; k != Endstops::count; ++k) {
     const uint8_t a = Endstops::axis_at(k);
-    const uint32_t spm = value(b, Kind::steps, a);
+    const uint32_t spm = value<Kind::steps>(b, a);
     HomingAxis& h = limits::settings.axis[k];
-    h.seek_rate = uint16_t(rate_steps(value(b, Kind::seek, k), spm));
-    h.locate_rate = uint16_t(rate_steps(value(b, Kind::locate, k), spm));
-    h.pull_off = uint16_t(length_steps(value(b, Kind::pull_off, k), spm));
-    h.travel = length_steps(value(b, Kind::travel, k), spm);
+    h.seek_rate = uint16_t(rate_steps(value<Kind::seek>(b, k), spm));
+    h.locate_rate = uint16_t(rate_steps(value<Kind::locate>(b, k), spm));
+    h.pull_off = uint16_t(length_steps(value<Kind::pull_off>(b, k), spm));
+    h.travel = length_steps(value<Kind::travel>(b, k), spm);
     // The back-off is no setting: the board's length in mm.
     const uint32_t back_off = length_steps(length_mm(board_homing(k).back_off, board::Axes::steps_per_m_at(a)), spm);
     h.back_off = uint16_t(back_off > 0xFFFF ? 0xFFFF : back_off);
   }
 }
+
+// The refusals, by Error (less none): grbl's code and the reason, in flash.
+const char kUnknown[] PROGMEM = "no such setting";
+const char kReadOnly[] PROGMEM = "setting is read-only";
+const char kBadNumber[] PROGMEM = "bad number";
+const char kOutOfRange[] PROGMEM = "setting out of range";
+const char kEngineLimit[] PROGMEM = "setting beyond the engine's step rate or acceleration";
+const char* const kRefusal[] PROGMEM = {kUnknown, kReadOnly, kBadNumber, kOutOfRange, kEngineLimit};
+const uint8_t kRefusalCode[] PROGMEM = {reply::code::bad_system_command, reply::code::bad_system_command,
+                                        reply::code::bad_number, reply::code::out_of_range, reply::code::step_rate};
+static_assert(uint8_t(Error::engine_limit) == 5, "one refusal per Error but none");
 
 }  // namespace
 
@@ -154,7 +180,7 @@ void list() {
   Values b;
   read(b);
   char line[24];
-  for (uint8_t i = 0; i < Table::count(); ++i) {
+  for (uint8_t i = 0; i < Table::kCount; ++i) {
     format(line, Table::at(i), b.value[i]);
     hal::uart::write(line);
     hal::uart::write('\n');
@@ -163,7 +189,7 @@ void list() {
 
 void change(const char* text) {
   Values b;
-  if (text[0] == 'R' && text[1] == 'S' && text[2] == 'T' && text[3] == '=' && text[4] == '$' && text[5] == '\0') {
+  if (strcmp_P(text, PSTR("RST=$")) == 0) {
     defaults(b);
   } else {
     read(b);
@@ -172,14 +198,9 @@ void change(const char* text) {
     for (; *text >= '0' && *text <= '9' && digits < 4; ++text, ++digits) n = uint16_t(n * 10 + (*text - '0'));
     Error e = Error::unknown;
     if (digits && *text == '=') e = Table::set(b, n, text + 1, engine());
-    switch (e) {
-      case Error::none: break;
-      case Error::unknown: return reply::error(reply::code::bad_system_command, PSTR("no such setting"));
-      case Error::read_only: return reply::error(reply::code::bad_system_command, PSTR("setting is read-only"));
-      case Error::bad_number: return reply::error(reply::code::bad_number, PSTR("bad number"));
-      case Error::out_of_range: return reply::error(reply::code::out_of_range, PSTR("setting out of range"));
-      default:
-        return reply::error(reply::code::step_rate, PSTR("setting beyond the engine's step rate or acceleration"));
+    if (e != Error::none) {
+      const uint8_t n = uint8_t(e) - 1;
+      return reply::error(pgm_read_byte(&kRefusalCode[n]), reinterpret_cast<const char*>(pgm_read_word(&kRefusal[n])));
     }
   }
   store(b);
