@@ -169,7 +169,7 @@ void check_coordinated(const CoordinatedCase& c, uint64_t seed, size_t count) {
 // A coordinated event's outputs leave in axis order, the shield's latch once
 // every axis has staged its step: on the Uno an axis's edge moves by the
 // work of the axes stepping before it in that event (shield staging about
-// 40 cycles each), on top of the UART's hold-off; 87 cycles seen
+// 40 cycles each), on top of the UART's hold-off; 89 cycles seen
 // (docs/step-engine.md).
 constexpr int64_t kCoordinatedCoilJitter = 128;
 

@@ -391,10 +391,14 @@ TEST(Settings, HomingRunsAtItsSettingsAndTheSoftLimitsFollowThem) {
     EXPECT_NEAR(double(m.axis('X')->position), -3000 + 2500, 1.5);
     EXPECT_NEAR(double(m.axis('Y')->position), -1000 + 1000, 1.5);
     EXPECT_NEAR(double(m.axis('Z')->position), -500 + 1000 + (soft ? 3000 : 3001), 1.5);
+    // The shortest step interval is the seek's, less at most the software
+    // edges' spread (48 cycles, docs/step-engine.md): where an edge falls in
+    // its handler moves with the interrupts around it, not with the setting.
+    constexpr double kEdgeSpread = 48;
     const double fastest = double(m.axis('X')->min_interval());
-    EXPECT_NEAR(fastest, m.f_cpu() / 10000.0, m.f_cpu() / 10000.0 * 0.01);  // $250 = 10000 steps/s
+    EXPECT_NEAR(fastest, m.f_cpu() / 10000.0, kEdgeSpread);  // $250 = 10000 steps/s
     // Y keeps the board's 25 mm/s.
-    EXPECT_NEAR(double(m.axis('Y')->min_interval()), m.f_cpu() / 25000.0, m.f_cpu() / 25000.0 * 0.01);
+    EXPECT_NEAR(double(m.axis('Y')->min_interval()), m.f_cpu() / 25000.0, kEdgeSpread);
     std::printf("$20=%d: X's fastest step %.0f cycles; %s\n", soft, fastest, m.serial().messages().back().c_str());
   }
 }
