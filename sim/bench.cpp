@@ -165,7 +165,7 @@ SizeRow measure_size(const std::string& dir, const char* name) {
   elf_end(elf);
   close(fd);
   sim::Machine m(path);
-  if (std::string(name) == "m16-lathe") {
+  if (std::string(name) == "m16-lathe" || std::string(name) == "m16-servo") {
     // The lathe's deepest line: a three-start thread's ratio and phase.
     for (const char* line : {"ENCODER C600 E4", "G33 Z-10 P13 D3 E2", "STOP", "?", "G0 Z0.1"})
       m.serial().add_line(line);

@@ -128,7 +128,7 @@ TEST(Bench, ParallelPageHasEveryFigureAndTheDocsPageIsCurrent) {
   std::vector<std::vector<std::string>> engine, sizes;
   stdout_rows(r.out, engine, sizes);
   ASSERT_EQ(engine.size(), 15u) << r.out;  // the scenarios of sim/bench_scenarios.cpp
-  ASSERT_EQ(sizes.size(), 8u) << r.out;  // uno, m32, m32-cnc, m32-direct, m32-driver, m16, m16-8mhz, m16-lathe
+  ASSERT_EQ(sizes.size(), 10u) << r.out;  // uno, m32, m32-grbl, m32-cnc, m32-direct, m32-driver, m16, m16-8mhz, m16-lathe, m16-servo
 
   // The page's rows, in order: the same figures in the same columns (the
   // page writes "45.5 %" where the terminal writes "45.5%", and puts the
