@@ -30,8 +30,8 @@ inline bool whole_in(int32_t v, uint8_t lo, uint8_t hi, uint8_t& out) {
 }  // namespace gcode_detail
 
 // A heater M-code line (see Heater codes); nothing in the state changes.
-template <uint8_t N, bool Arcs, bool Heater, bool MarlinDwell>
-GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell>::heater(const GcodeBlock& b, GcodeAction<N>& a) const {
+template <uint8_t N, bool Arcs, bool Heater, bool MarlinDwell, bool Modes>
+GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes>::heater(const GcodeBlock& b, GcodeAction<N>& a) const {
   if (!Heater) return GcodeError::no_heater;
   for (uint8_t g = 0; g < kGcodeGroups; ++g)
     if (g != uint8_t(GcodeGroup::machine) && b.code[g] != GcodeCode::none) return GcodeError::heater_code_alone;

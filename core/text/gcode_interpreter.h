@@ -12,6 +12,10 @@
 //   heater M-code is no_heater and their checks are not linked.
 //   GcodeInterpreter<N, A, H, true> reads G4's words as Marlin does (a
 //   printer host's dialect): P milliseconds, S seconds (S wins if both).
+//   GcodeInterpreter<N, A, H, D, false> serves axes without excitation
+//   modes (step/dir drivers set their microsteps in hardware): M350 is then
+//   unsupported_code, as in a Marlin built without microstep pins, and none
+//   of its checks is linked.
 //
 //   execute(block, action) applies one block. On GcodeError::none the state
 //   has moved on (modes, feed, G92 offsets, position) and `action` says what
@@ -105,7 +109,7 @@
 
 namespace am {
 
-template <uint8_t N, bool Arcs = true, bool Heater = true, bool MarlinDwell = false>
+template <uint8_t N, bool Arcs = true, bool Heater = true, bool MarlinDwell = false, bool Modes = true>
 class GcodeInterpreter {
   static_assert(N >= 1 && N <= 8, "one bit per axis in GcodeAction::axes");
 
@@ -185,8 +189,8 @@ class GcodeInterpreter {
   GcodeState<N> state_;
 };
 
-template <uint8_t N, bool Arcs, bool Heater, bool MarlinDwell>
-GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell>::execute(const GcodeBlock& b, GcodeAction<N>& a) {
+template <uint8_t N, bool Arcs, bool Heater, bool MarlinDwell, bool Modes>
+GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes>::execute(const GcodeBlock& b, GcodeAction<N>& a) {
   using namespace gcode_detail;
   if (b.group(GcodeGroup::machine) >= GcodeCode::m104) return heater(b, a);
   constexpr uint32_t kArcWords =
@@ -222,7 +226,8 @@ GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell>::execute(const GcodeBl
   const bool dwell = non_modal == GcodeCode::g4;
   const bool set_position = non_modal == GcodeCode::g92;
   const bool home = non_modal == GcodeCode::g28;
-  const bool set_mode = machine == GcodeCode::m350;
+  if (!Modes && machine == GcodeCode::m350) return GcodeError::unsupported_code;
+  const bool set_mode = Modes && machine == GcodeCode::m350;
   if ((set_position || set_mode || home) && motion != GcodeCode::none) return GcodeError::axis_conflict;
   const bool move = axis_words && !set_position && !set_mode && !home;
   const uint8_t actions = uint8_t((non_modal != GcodeCode::none) + (machine != GcodeCode::none) +

@@ -1,6 +1,7 @@
 // G-code on the real images (docs/gcode.md): programs end exactly where their
 // numbers say, every refused line changes nothing, G4 is timed by the step
 // timer.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -194,6 +195,26 @@ TEST(Gcode, G4DwellsToTheTickBetweenMovesOfTheSameAxes) {
     ASSERT_EQ(second.size(), 100u);
     EXPECT_EQ(st[100] - st[99], ms * 16000 + second[0]) << "P" << p;
   }
+}
+
+TEST(Gcode, AnImageWithoutCoilAxesHasNoM350) {
+  // Every m32 axis is step/dir (its microsteps are the drivers' jumpers): M350
+  // is not in those images. grbl style: unsupported, error:20; Marlin style:
+  // Marlin's answer to a code it was built without. The line changes nothing.
+  auto grbl = simtest::run("m32-cnc", {"M350 X16", "G1 X1 F600"}, 30);
+  const std::vector<sim::Response>& g = grbl->serial().responses();
+  ASSERT_EQ(g.size(), 2u);
+  EXPECT_EQ(g[0].answer, "error:20");
+  EXPECT_EQ(g[0].reason, "unsupported G or M code");
+  EXPECT_EQ(g[1].answer, "ok");
+  EXPECT_EQ(grbl->axis('X')->steps(), 1000.0);
+  auto marlin = simtest::run("m32", {"M350 X16", "G1 X1 F600"}, 30);
+  const std::vector<sim::Response>& r = marlin->serial().responses();
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_EQ(r[0].answer, "ok");
+  const std::vector<std::string>& msgs = marlin->serial().messages();
+  EXPECT_NE(std::find(msgs.begin(), msgs.end(), "echo:Unknown command: \"M350 X16\""), msgs.end());
+  EXPECT_EQ(marlin->axis('X')->steps(), 1000.0);
 }
 
 TEST(Gcode, TargetsMeanTheSameInEveryExcitationModeAndBesideMove) {

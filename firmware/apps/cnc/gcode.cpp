@@ -59,22 +59,36 @@ typename TableEntry<board::kSettings>::type AxisTable<AxisSet<A...>>::value[size
 // Built on first use, so a board without G-code links none of it. A board
 // without arcs (board::kArcs: flash) refuses G2/G3 whole (arcs_not_here),
 // one without a heater its M-codes (no_heater).
-// A Marlin host's G4 P is milliseconds (G4 S seconds).
-using Interpreter = am::GcodeInterpreter<kAxes, board::kArcs, board::kHeater, reply::kMarlin>;
+// Whether any axis has excitation modes (M350).
+template <typename Set>
+struct AnyModes;
+template <typename... A>
+struct AnyModes<AxisSet<A...>> {
+  static constexpr uint8_t all[sizeof...(A)] = {modes_of<A>(0, 0)...};
+  static constexpr bool value(uint8_t i = 0) { return i < sizeof...(A) && (all[i] != 0 || value(uint8_t(i + 1))); }
+};
+constexpr bool kModes = AnyModes<board::Axes>::value();
+
+// A Marlin host's G4 P is milliseconds (G4 S seconds); a board whose axes
+// have no excitation modes refuses M350 whole.
+using Interpreter = am::GcodeInterpreter<kAxes, board::kArcs, board::kHeater, reply::kMarlin, kModes>;
 Interpreter& interpreter() {
   static Interpreter instance(AxisTable<board::Axes>::value);
   return instance;
 }
 // The error texts and their pointers in flash (docs/gcode.md: a switch over
 // PSTR()s would become a pointer table in RAM). A board without a heater
-// can only meet no_heater of the heater's errors: the others point at an
-// empty text, and the linker drops theirs.
+// can only meet no_heater of the heater's errors, one without excitation
+// modes none of M350's: the others point at an empty text, and the linker
+// drops theirs.
 #define AM_ERROR_TEXT(name, text) const char name##_text[] PROGMEM = text;
 AM_GCODE_ERRORS(AM_ERROR_TEXT)
 #undef AM_ERROR_TEXT
 const char kNoText[] PROGMEM = "";
 constexpr bool reachable(am::GcodeError e) {
-  return board::kHeater || e < am::GcodeError::heater_code_alone || e > am::GcodeError::bad_cycles;
+  using E = am::GcodeError;
+  return (board::kHeater || e < E::heater_code_alone || e > E::bad_cycles) &&
+         (kModes || (e != E::bad_mode && e != E::axis_has_no_modes && e != E::mode_not_available));
 }
 #define AM_ERROR_POINTER(name, text) reachable(am::GcodeError::name) ? name##_text : kNoText,
 const char* const kErrorText[] PROGMEM = {AM_GCODE_ERRORS(AM_ERROR_POINTER)};
