@@ -1,6 +1,7 @@
 // The heater M-codes of the G-code interpreter (gcode_interpreter.h, "Heater
 // codes" in its contract): GcodeInterpreter::heater() turns an M104, M105,
-// M108, M109, M155, M301, M303 or M500 line into a GcodeHeaterCommand, with
+// M106, M107 (the part fan), M108, M109, M155, M301, M303 or M500 line into a
+// GcodeHeaterCommand, with
 // its words checked and nothing in the interpreter's state changed. Included
 // at the end of gcode_interpreter.h, which declares what it defines.
 #pragma once
@@ -32,11 +33,13 @@ inline bool whole_in(int32_t v, uint8_t lo, uint8_t hi, uint8_t& out) {
 // A heater M-code line (see Heater codes); nothing in the state changes.
 template <uint8_t N, bool Arcs, bool Heater, bool MarlinDwell, bool Modes>
 GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes>::heater(const GcodeBlock& b, GcodeAction<N>& a) const {
-  if (!Heater) return GcodeError::no_heater;
+  const GcodeCode code = b.group(GcodeGroup::machine);
+  const bool fan = code == GcodeCode::m106 || code == GcodeCode::m107;
+  if (!Heater) return fan ? GcodeError::unsupported_code : GcodeError::no_heater;
   for (uint8_t g = 0; g < kGcodeGroups; ++g)
     if (g != uint8_t(GcodeGroup::machine) && b.code[g] != GcodeCode::none) return GcodeError::heater_code_alone;
   GcodeHeaterCommand& h = a.heater;
-  const GcodeCode code = h.code = b.group(GcodeGroup::machine);
+  h.code = code;
   const bool m109 = code == GcodeCode::m109, m155 = code == GcodeCode::m155;
   const bool m301 = code == GcodeCode::m301, m303 = code == GcodeCode::m303;
   const bool needs_s = m109 || m155 || code == GcodeCode::m104;
@@ -45,11 +48,15 @@ GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes>::heater(const G
   if (needs_s) takes |= m109 && !b.has('S') ? r : s;
   if (m301) takes |= gcode_letter_bit('P') | gcode_letter_bit('I') | gcode_letter_bit('D');
   if (m303) takes |= s | gcode_letter_bit('C');
+  if (code == GcodeCode::m106) takes |= s;
   if (b.words & ~takes) return GcodeError::unused_word;
   if (needs_s && !(b.words & (s | r))) return GcodeError::missing_temperature;
   h.wait_cooling = b.has('R');
   const int32_t t = b.get(h.wait_cooling ? 'R' : 'S');  // 1/10000
-  if (m155) {
+  if (fan) {  // duty S 0 .. 255 (Marlin's full speed without S); M107: 0
+    h.count = b.has('S') ? 0 : code == GcodeCode::m106 ? 255 : 0;
+    if (b.has('S') && !gcode_detail::whole_in(t, 0, 255, h.count)) return GcodeError::out_of_range;
+  } else if (m155) {
     if (!gcode_detail::whole_in(t, 0, 60, h.count)) return GcodeError::bad_interval;
   } else if (m301) {
     using gcode_detail::gain;

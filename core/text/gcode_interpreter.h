@@ -88,6 +88,9 @@
 //     M109 S<C> | R<C>   set it and wait (S: only while heating; R: either way)
 //     M105, M108         report; end a wait (the machine's business)
 //     M155 S<s>          auto-report every S whole seconds, 0 .. 60 (0: off)
+//     M106 [S<duty>], M107  the part fan: duty 0 .. 255 (M106 alone: 255),
+//                        M107: 0 (a board without a heater, not a printer,
+//                        has neither: unsupported_code)
 //     M301 [P][I][D]     set the given PID gains (Marlin's units), report
 //     M303 [S<C>][C<n>]  relay autotune at S (default 150 C), C cycles 3 .. 20
 //                        (default 5)

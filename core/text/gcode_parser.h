@@ -122,7 +122,7 @@ enum class GcodeCode : uint8_t {
   m2, m30,              // stop
   m82, m83,             // extruder
   m17, m18, m84, m114, m350, m400, m999,  // machine
-  m104, m105, m108, m109, m155, m301, m303, m500,  // machine: the heater's (M500: its gains)
+  m104, m105, m106, m107, m108, m109, m155, m301, m303, m500,  // machine: the heater's and the fan's (M500: the gains)
 };
 
 inline GcodeGroup gcode_group(GcodeCode c) {
@@ -205,8 +205,7 @@ inline GcodeCode code_of(char letter, int32_t number) {
   if (n == 350) return GcodeCode::m350;
   if (n == 400) return GcodeCode::m400;
   if (n == 999) return GcodeCode::m999;
-  if (n == 104 || n == 105) return GcodeCode(uint8_t(GcodeCode::m104) + (n - 104));
-  if (n == 108 || n == 109) return GcodeCode(uint8_t(GcodeCode::m108) + (n - 108));
+  if (n >= 104 && n <= 109) return GcodeCode(uint8_t(GcodeCode::m104) + (n - 104));
   if (n == 155) return GcodeCode::m155;
   if (n == 301) return GcodeCode::m301;
   if (n == 303) return GcodeCode::m303;

@@ -65,10 +65,10 @@ constexpr uint8_t kGcodeAutotuneCycles = 5;       // M303 without C (Marlin)
 
 // What a heater M-code asks (GcodeActionKind::heater, see Heater codes).
 struct GcodeHeaterCommand {
-  GcodeCode code;       // m104 m105 m108 m109 m155 m301 m303 m500
+  GcodeCode code;       // m104 m105 m106 m107 m108 m109 m155 m301 m303 m500
   bool wait_cooling;    // M109 R
   uint8_t gains_given;  // M301: bit 0 P, 1 I, 2 D
-  uint8_t count;        // M155: seconds; M303: cycles
+  uint8_t count;        // M155: seconds; M303: cycles; M106: the fan's duty 0 .. 255
   int16_t target;       // M104 M109 M303: 0.01 C
   uint32_t gains[3];    // M301: P I D, thousandths
 };

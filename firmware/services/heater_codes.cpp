@@ -144,7 +144,7 @@ bool run(const am::GcodeHeaterCommand& c) {
       write_gains(PSTR("echo:Settings Stored: "), PSTR("Settings Stored: "), gains());
       ok();
       return true;
-    default:  // M108: nothing waits when it is read
+    default:  // M108: nothing waits when it is read; M106, M107: the board has no fan output (docs/heater.md)
       ok();
       return true;
   }

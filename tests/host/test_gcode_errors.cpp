@@ -104,7 +104,7 @@ TEST(GcodeErrors, BadLineNumber) {
 }
 TEST(GcodeErrors, UnsupportedCode) {
   check(GcodeError::unsupported_code, "G30");
-  check(GcodeError::unsupported_code, "M106 S200");
+  check(GcodeError::unsupported_code, "M220 S200");
 }
 TEST(GcodeErrors, ModalGroupConflict) {
   check(GcodeError::modal_group_conflict, "G0 G1 X15");
@@ -205,6 +205,34 @@ TEST(GcodeErrors, BadCycles) {
   check(GcodeError::bad_cycles, "M303 S200 C2");
   check(GcodeError::bad_cycles, "M303 C21");
   check(GcodeError::bad_cycles, "M303 C4.5");
+}
+
+// The part fan on a printer (a board with a heater): M106's duty 0 .. 255,
+// 255 without S, M107 0; beyond the range, or a word it does not take, an
+// error; on a board without a heater neither code is in the image.
+TEST(GcodeHeaterCodes, TheFan) {
+  Interp g(kM32);
+  am::GcodeAction<5> a;
+  const struct {
+    const char* line;
+    am::GcodeCode code;
+    uint8_t duty;
+  } cases[] = {{"M106 S128", am::GcodeCode::m106, 128}, {"M106", am::GcodeCode::m106, 255},
+               {"M106 S0", am::GcodeCode::m106, 0},     {"M106 S255", am::GcodeCode::m106, 255},
+               {"M107", am::GcodeCode::m107, 0}};
+  for (const auto& c : cases) {
+    ASSERT_EQ(g.run(c.line, a), GcodeError::none) << c.line;
+    EXPECT_EQ(a.kind, am::GcodeActionKind::heater) << c.line;
+    EXPECT_EQ(a.heater.code, c.code) << c.line;
+    EXPECT_EQ(a.heater.count, c.duty) << c.line;
+  }
+  for (const char* bad : {"M106 S256", "M106 S-1", "M106 S12.5"}) EXPECT_EQ(g.run(bad, a), GcodeError::out_of_range) << bad;
+  EXPECT_EQ(g.run("M107 S10", a), GcodeError::unused_word);
+  EXPECT_EQ(g.run("M106 P1 S10", a), GcodeError::unused_word);
+  EXPECT_EQ(g.run("M106 G90", a), GcodeError::heater_code_alone);
+  am::GcodeInterpreter<5, false, false> no_heater(kM32);
+  EXPECT_EQ(no_heater.run("M106 S10", a), GcodeError::unsupported_code);
+  EXPECT_EQ(no_heater.run("M107", a), GcodeError::unsupported_code);
 }
 
 // What the accepted heater codes carry.

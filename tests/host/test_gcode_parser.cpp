@@ -135,7 +135,7 @@ TEST(GcodeParser, CodesAndTheirGroups) {
 
 TEST(GcodeParser, UnsupportedCodes) {
   for (const char* line : {"G30", "G5", "G38", "G80", "G93", "G95", "G1.0", "G1.5", "G92.1", "G-1", "M0", "M3",
-                           "M106", "M110", "M220", "M998", "M350.5", "G214748"})
+                           "M110", "M220", "M221", "M998", "M350.5", "G214748"})
     EXPECT_EQ(parse(line), GcodeError::unsupported_code) << line;
   EXPECT_EQ(parse("G9999999999"), GcodeError::out_of_range);
 }

@@ -38,9 +38,8 @@ std::string fixed(int64_t v, int decimals) {
 
 // A print as a slicer writes it (absolute E, `G92 E0` at every layer, as
 // Cura and Slic3r do): layers of a round perimeter of short segments, a
-// prime and a retraction each, travels, fan changes (M106, which this
-// printer does not have: Marlin's `echo:Unknown command` and the print goes
-// on). Coordinates in micrometres, E in 1/100000 mm (five decimals), and the
+// prime and a retraction each, travels, fan changes (M106/M107: this
+// printer has no fan output, a no-op answered `ok`). Coordinates in micrometres, E in 1/100000 mm (five decimals), and the
 // machine's E steps as the firmware counts them: E rounded to 1/10000 mm,
 // then to steps (1000 per mm) half away from zero, `G92 E0` keeping the
 // steps.
