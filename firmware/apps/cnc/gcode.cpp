@@ -79,8 +79,9 @@ Interpreter& interpreter() {
 // The error texts and their pointers in flash (docs/gcode.md: a switch over
 // PSTR()s would become a pointer table in RAM). A board without a heater
 // can only meet no_heater of the heater's errors, one without excitation
-// modes none of M350's: the others point at an empty text, and the linker
-// drops theirs.
+// modes none of M350's (unless it has the direct MODE command, which answers
+// with them): the others point at an empty text, and the linker drops
+// theirs.
 #define AM_ERROR_TEXT(name, text) const char name##_text[] PROGMEM = text;
 AM_GCODE_ERRORS(AM_ERROR_TEXT)
 #undef AM_ERROR_TEXT
@@ -88,7 +89,7 @@ const char kNoText[] PROGMEM = "";
 constexpr bool reachable(am::GcodeError e) {
   using E = am::GcodeError;
   return (board::kHeater || e < E::heater_code_alone || e > E::bad_cycles) &&
-         (kModes || (e != E::bad_mode && e != E::axis_has_no_modes && e != E::mode_not_available));
+         (kModes || board::kCommands || (e != E::bad_mode && e != E::axis_has_no_modes && e != E::mode_not_available));
 }
 #define AM_ERROR_POINTER(name, text) reachable(am::GcodeError::name) ? name##_text : kNoText,
 const char* const kErrorText[] PROGMEM = {AM_GCODE_ERRORS(AM_ERROR_POINTER)};
