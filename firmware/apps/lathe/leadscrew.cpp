@@ -17,6 +17,7 @@
 #include <avr/interrupt.h>
 #include <util/atomic.h>
 
+#include "../../../core/lathe/rpm_meter.h"
 #include "../../../core/math/isqrt.h"
 #include "../../../hal/avr/step_timer.h"
 #include "../../board.h"
@@ -58,13 +59,12 @@ uint32_t move_rate_;
 // The main loop's speed control.
 int32_t velocity_;   // steps/s, signed: the pace's
 uint32_t next_tick_;
-constexpr uint8_t kTargetSamples = 8, kRpmSamples = 8;
-constexpr uint8_t kTargetEvery = 4, kRpmEvery = 64;  // ms between samples
+constexpr uint8_t kTargetSamples = 8;
+constexpr uint8_t kTargetEvery = 4;    // ms between samples
 int32_t target_ring_[kTargetSamples];  // the target, every 4 ms (its speed over 32 ms)
-int32_t count_ring_[kRpmSamples];      // the spindle count, every 64 ms (rpm over 512 ms)
+am::RpmMeter rpm;                      // the spindle count, every 64 ms
 int32_t target_speed_;                 // steps/s, from target_ring_
-uint16_t tick_;                        // ms; 2^16 is a multiple of both rings' cycles
-int16_t rpm_;
+uint16_t tick_;                        // ms; 2^16 is a multiple of both samplings' cycles
 
 constexpr uint32_t kPaceHz = F_CPU / 8;
 constexpr uint32_t kMinPaceRate = kPaceHz / 65535 + 1;  // 31 steps/s at 16 MHz
@@ -264,12 +264,7 @@ void brake(Stop why) {
 void control_tick() {
   const uint16_t tick = tick_++;
   const int32_t count = spindle_count();
-  if (tick % kRpmEvery == 0) {
-    const uint8_t at = uint8_t(tick / kRpmEvery) % kRpmSamples;
-    // counts in 512 ms -> rpm: x 60000 / (512 C)
-    rpm_ = int16_t(int32_t(count - count_ring_[at]) * 1875 / (16 * int32_t(counts_per_turn_)));
-    count_ring_[at] = count;
-  }
+  if (tick % am::RpmMeter::kSampleMs == 0) rpm.sample(count, counts_per_turn_);
   const State s = state_;
   if (s == State::catching) {
     const int32_t target = target_now();
@@ -403,7 +398,7 @@ int32_t following_error() {
   return e;
 }
 
-int16_t spindle_rpm() { return rpm_; }
+int16_t spindle_rpm() { return rpm.rpm(); }
 
 int32_t spindle_count() {
   int32_t c;
@@ -424,7 +419,7 @@ bool set_encoder(bool quadrature, uint16_t lines) {
   if (counts > 0xFFFF) return false;
   counts_per_turn_ = uint16_t(counts);
   spindle_encoder::init(m);
-  for (uint8_t i = 0; i < kRpmSamples; ++i) count_ring_[i] = spindle_count();
+  rpm.reset(spindle_count());
   return true;
 }
 

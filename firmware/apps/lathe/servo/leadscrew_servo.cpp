@@ -30,6 +30,7 @@
 #include <avr/io.h>
 #include <util/atomic.h>
 
+#include "../../../../core/lathe/rpm_meter.h"
 #include "../../../../core/text/fixed_number.h"
 #include "../../../../hal/avr/ext_int.h"
 #include "../../../board.h"
@@ -81,11 +82,8 @@ uint32_t motor_time_;    // fine time of the last motor count
 uint32_t motor_period_;  // cycles between the last two
 
 // The main loop's rpm.
-constexpr uint8_t kRpmSamples = 8;
-int32_t count_ring_[kRpmSamples];
-uint8_t ring_at_;
+am::RpmMeter rpm;
 uint32_t next_tick_;
-int16_t rpm_;
 
 // Cycles since power-up (mod 2^32): Timer1's count below its overflows.
 // Interrupts off.
@@ -325,13 +323,7 @@ void init() {
 }
 
 void poll() {
-  // The rpm over the last 8 x 64 ms.
-  while (clock::due(next_tick_, clock::ms(64))) {
-    const int32_t c = spindle_count();
-    rpm_ = int16_t(int32_t(c - count_ring_[ring_at_]) * 1875 / (16 * int32_t(counts_per_turn_)));
-    count_ring_[ring_at_] = c;
-    ring_at_ = uint8_t((ring_at_ + 1) % kRpmSamples);
-  }
+  while (clock::due(next_tick_, clock::ms(am::RpmMeter::kSampleMs))) rpm.sample(spindle_count(), counts_per_turn_);
 }
 
 Refusal engage(const am::Ratio& ratio, bool reversed, int32_t length_steps, uint8_t start, uint8_t starts) {
@@ -432,7 +424,7 @@ int32_t following_error() {
   return e;
 }
 
-int16_t spindle_rpm() { return rpm_; }
+int16_t spindle_rpm() { return rpm.rpm(); }
 
 int32_t spindle_count() {
   int32_t c;
@@ -445,8 +437,7 @@ uint16_t lost_counts() { return 0; }  // one channel: nothing to check a count a
 bool set_encoder(bool quadrature, uint16_t lines) {
   if (state_ != State::idle || lines == 0 || quadrature) return false;
   counts_per_turn_ = lines;
-  const int32_t c = spindle_count();
-  for (uint8_t i = 0; i < kRpmSamples; ++i) count_ring_[i] = c;
+  rpm.reset(spindle_count());
   return true;
 }
 
