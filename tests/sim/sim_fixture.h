@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <cstdio>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -43,6 +44,25 @@ inline std::string slurp(const std::string& path) {
 }
 
 inline bool exists(const std::string& path) { return std::ifstream(path).good(); }
+
+// An ATmega16 image's flash (.text + .data) and RAM (.data + .bss) as the
+// toolchain's avr-size prints them; 0 and 0 if it could not be run.
+struct ImageSize {
+  unsigned long flash = 0, ram = 0;
+};
+inline ImageSize avr_size_m16(const std::string& name) {
+  ImageSize size;
+  const std::string cmd = "avr-size -C --mcu=atmega16 " + image(name);
+  FILE* out = popen(cmd.c_str(), "r");
+  if (!out) return size;
+  char line[256];
+  while (fgets(line, sizeof line, out)) {
+    std::sscanf(line, "Program: %lu", &size.flash);
+    std::sscanf(line, "Data: %lu", &size.ram);
+  }
+  pclose(out);
+  return size;
+}
 
 // A PWM output's edges: the cycles of its rises, and its high times.
 struct PwmTrace {

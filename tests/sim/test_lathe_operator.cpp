@@ -196,16 +196,8 @@ TEST(LatheOperator, WholeThreadingSessionFromTheKeys) {
 // The panel image within the ATmega16's flash with 10 % to spare (avr-size
 // of the toolchain that built it).
 TEST(LatheOperator, PanelImageLeavesTenPercentOfTheFlash) {
-  const std::string cmd = "avr-size -C --mcu=atmega16 " + simtest::image("m16-panel");
-  FILE* out = popen(cmd.c_str(), "r");
-  ASSERT_NE(out, nullptr);
-  unsigned long flash = 0, ram = 0;
-  char line[256];
-  while (fgets(line, sizeof line, out)) {
-    std::sscanf(line, "Program: %lu", &flash);
-    std::sscanf(line, "Data: %lu", &ram);
-  }
-  pclose(out);
+  const simtest::ImageSize size = simtest::avr_size_m16("m16-panel");
+  const unsigned long flash = size.flash, ram = size.ram;
   ASSERT_GT(flash, 0u);
   std::printf("m16-panel: %lu B of flash (limit 14745 B, 90 %% of 16384), %lu B of RAM (.data + .bss)\n", flash, ram);
   EXPECT_LE(flash, 14745u);

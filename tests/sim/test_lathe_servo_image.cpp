@@ -196,16 +196,8 @@ namespace {
 // ratio's 128-bit set-up) with the servo's vectors running under it; that
 // pass followed at 60 rpm and stopped (overspeed) at 300.
 TEST(LatheServo, ImageLeavesTenPercentOfTheFlashAndStackHeadroom) {
-  const std::string cmd = "avr-size -C --mcu=atmega16 " + simtest::image("m16-servo");
-  FILE* out = popen(cmd.c_str(), "r");
-  ASSERT_NE(out, nullptr);
-  unsigned long flash = 0, ram = 0;
-  char line[256];
-  while (fgets(line, sizeof line, out)) {
-    std::sscanf(line, "Program: %lu", &flash);
-    std::sscanf(line, "Data: %lu", &ram);
-  }
-  pclose(out);
+  const simtest::ImageSize size = simtest::avr_size_m16("m16-servo");
+  const unsigned long flash = size.flash, ram = size.ram;
   ASSERT_GT(flash, 0u);
   // 13 TPI, three starts: a 5.86 mm lead, lambda = 36 counts per spindle
   // count. At 60 rpm (1440 counts/s) the servo follows it; at 300 rpm (7200

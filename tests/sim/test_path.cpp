@@ -318,8 +318,10 @@ TEST(Path, DirectionsFlipAtSpeedWithTheDriversSetUpTime) {
   uint64_t least = ~0ull;  // shortest DIR change to step, cycles
   for (size_t k = 0; k < y.size(); ++k) {
     while (d < dir.size() && dir[d].cycle <= y[k]) ++d;
-    if (d > 0) EXPECT_GE(y[k] - dir[d - 1].cycle, setup) << "Y step " << k;
-    if (d > 0) least = std::min(least, y[k] - dir[d - 1].cycle);
+    if (d > 0) {
+      EXPECT_GE(y[k] - dir[d - 1].cycle, setup) << "Y step " << k;
+      least = std::min(least, y[k] - dir[d - 1].cycle);
+    }
     // A flip between two steps less than 2 ms apart: made at speed.
     if (k > 0 && d > 0 && dir[d - 1].cycle > y[k - 1] && y[k] - y[k - 1] < m.f_cpu() / 500) ++flips_under_way;
   }

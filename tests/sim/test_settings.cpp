@@ -137,7 +137,9 @@ TEST(Settings, StepsPerMmSetTheStepsOnThePins) {
     EXPECT_EQ(m->axis(c.axis)->steps(), c.steps) << c.setting << " " << c.move;
     EXPECT_EQ(m->axis(c.axis)->step_cycles.size(), size_t(std::fabs(c.steps))) << c.setting;
     for (const sim::AxisTrace& a : m->axes()) {
-      if (a.name != c.axis) EXPECT_TRUE(a.step_cycles.empty()) << c.setting << " " << a.name;
+      if (a.name != c.axis) {
+        EXPECT_TRUE(a.step_cycles.empty()) << c.setting << " " << a.name;
+      }
     }
     const std::string report = m->serial().messages().back();
     EXPECT_NE(report.find(c.report), std::string::npos) << report;
