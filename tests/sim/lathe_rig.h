@@ -15,11 +15,14 @@
 
 namespace simtest {
 
-struct LatheRig {
-  explicit LatheRig(const sim::SpindleParams& p)
-      : m(new sim::Machine(image("m16-lathe"))), step(&m->watch_pin('C', 0)), dir(&m->watch_pin('C', 1)) {
+// What both lathe rigs share: a lathe image relayed line by line over its
+// UART, its spindle simulated (the rig adds the leadscrew's side).
+struct LatheUart {
+  LatheUart(const char* name, const sim::SpindleParams& p) : m(new sim::Machine(image(name))) {
     m->serial().relay_only();
     spindle.reset(new sim::SpindleEncoder(*m, p));
+  }
+  void wait_banner() {
     m->run([this] { return m->serial().banner_seen(); }, m->f_cpu());
   }
 
@@ -43,22 +46,30 @@ struct LatheRig {
     return r.size() >= 2 ? r[r.size() - 2] : "";
   }
 
-  void run_for(double s) {
-    m->run([] { return false; }, uint64_t(s * m->f_cpu()));
-  }
   // Runs until the leadscrew is idle (WAIT), at most budget_s.
   bool wait_idle(double budget_s) { return send("WAIT", budget_s) == "ok"; }
 
+  std::unique_ptr<sim::Machine> m;
+  std::unique_ptr<sim::SpindleEncoder> spindle;
+  sim::Response last;
+};
+
+struct LatheRig : LatheUart {
+  explicit LatheRig(const sim::SpindleParams& p)
+      : LatheUart("m16-lathe", p), step(&m->watch_pin('C', 0)), dir(&m->watch_pin('C', 1)) {
+    wait_banner();
+  }
+
+  void run_for(double s) {
+    m->run([] { return false; }, uint64_t(s * m->f_cpu()));
+  }
   // The cycle a pass's line was received whole: it was armed after it.
   uint64_t armed_after() const { return last.sent_cycle; }
 
   const sim::AxisTrace& z() const { return *m->axis('Z'); }
 
-  std::unique_ptr<sim::Machine> m;
-  std::unique_ptr<sim::SpindleEncoder> spindle;
   const std::vector<sim::PinEdge>* step;
   const std::vector<sim::PinEdge>* dir;
-  sim::Response last;
 };
 
 // A status line's field ("z", "err", "state", ...), "" when absent.
@@ -77,41 +88,20 @@ namespace simtest {
 
 // The m16-servo image with a simulated spindle and the seed's DC servo
 // (sim/dc_servo.h) on its leadscrew; lines as LatheRig sends them.
-struct ServoRig {
+struct ServoRig : LatheUart {
   explicit ServoRig(const sim::SpindleParams& p, const sim::ServoParams& s = sim::ServoParams())
-      : m(new sim::Machine(image("m16-servo"))), enable(&m->watch_pin('D', 5)) {
-    m->serial().relay_only();
-    spindle.reset(new sim::SpindleEncoder(*m, p));
+      : LatheUart("m16-servo", p), enable(&m->watch_pin('D', 5)) {
     servo.reset(new sim::DcServo(*m, s));
-    m->run([this] { return m->serial().banner_seen(); }, m->f_cpu());
+    wait_banner();
   }
 
-  std::string send(const std::string& line, double budget_s = 1) {
-    const size_t k = m->serial().responses().size();
-    m->serial().relay(line.data(), line.size());
-    m->serial().relay("\n", 1);
-    m->run([this, k] { return m->serial().responses().size() > k && !m->serial().responses()[k].answer.empty(); },
-           uint64_t(budget_s * m->f_cpu()));
-    if (m->serial().responses().size() <= k) return "";
-    last = m->serial().responses()[k];
-    return last.answer;
-  }
-  std::string status() {
-    if (send("?") != "ok") return "";
-    const auto& r = m->serial().received();
-    return r.size() >= 2 ? r[r.size() - 2] : "";
-  }
   void run_until(double t_s) {
     const uint64_t until = uint64_t(t_s * m->f_cpu());
     if (until > m->cycles()) m->run([] { return false; }, until - m->cycles());
   }
-  bool wait_idle(double budget_s) { return send("WAIT", budget_s) == "ok"; }
 
-  std::unique_ptr<sim::Machine> m;
-  std::unique_ptr<sim::SpindleEncoder> spindle;
   std::unique_ptr<sim::DcServo> servo;
   const std::vector<sim::PinEdge>* enable;  // PD5, the L298's ENABLE
-  sim::Response last;
 };
 
 }  // namespace simtest
