@@ -65,7 +65,9 @@ class Writer {
     word('Y', y_, y, 3, 1e-3);
     word('Z', z_, z, 3, 1e-3);
     word('E', e5_, e5, 5, 1e-5);
-    if (feed != feed_) s += " F" + number(std::llround(feed), 0);
+    // F when it changes, and always on a retraction or an unretraction
+    // (extruder alone), as PrusaSlicer writes them.
+    if (feed != feed_ || s.rfind("G1 E", 0) == 0) s += " F" + number(std::llround(feed), 0);
     feed_ = feed;
     line(comment.empty() ? s : s + " ; " + comment);
     if (timing_) est_.move(d, feed);
