@@ -363,8 +363,13 @@ int main(int argc, char** argv) {
   }
   // The hot end's run is the longest: first.
   jobs.insert(jobs.begin(), Job{"heater m32 M104 S200", [&dir](Result& r) { r.heater = measure_heater(dir); }});
-  // The print next: the second longest.
-  jobs.insert(jobs.begin() + 1, Job{"print m32 slicer file", [&dir](Result& r) { r.print = measure_print(dir); }});
+  // The prints next: the next longest.
+  const std::vector<PrintScenario>& prints = print_scenarios();
+  for (size_t i = 0; i < prints.size(); ++i) {
+    const PrintScenario s = prints[i];
+    jobs.insert(jobs.begin() + long(1 + i), Job{std::string("print m32 ") + s.label,
+                                                [&dir, s](Result& r) { r.print = measure_print(dir, s); }});
+  }
   const size_t first_lathe_job = jobs.size();
   for (const LatheScenario& s : lathe_scenarios()) {
     jobs.push_back({std::string("lathe ") + s.label + " " + s.pitch + " " + std::to_string(int(s.rpm)) + " rpm",
@@ -389,25 +394,29 @@ int main(int argc, char** argv) {
       unfinished = true;
       std::fprintf(stderr, "avrmotion-bench: %s: %s\n", jobs[i].name.c_str(), results[i].error);
     } else if (i == 0   ? !results[i].heater.ok
-               : i == 1 ? !results[i].print.ran || !results[i].print.exact
+               : i <= prints.size() ? !results[i].print.ran || !results[i].print.exact
                : i < first_lathe_job ? !results[i].figures.ok
                                             : i < first_size_job && !results[i].lathe.ran) {
       inexact = true;
     }
   }
   const HeaterFigures heater = results.front().heater;
-  const PrintFigures print = results[1].print;
-  // The host's time varies from run to run: standard error only.
-  if (print.total_s > 0)
-    std::fprintf(stderr, "avrmotion-bench: print: %.3f s of host time per simulated second (%.1f s for %.1f s)\n",
-                 print.wall_s / print.total_s, print.wall_s, print.total_s);
+  std::vector<PrintFigures> print;
+  for (size_t i = 0; i < prints.size(); ++i) {
+    print.push_back(results[1 + i].print);
+    // The host's time varies from run to run: standard error only.
+    if (print.back().total_s > 0)
+      std::fprintf(stderr, "avrmotion-bench: print %s: %.3f s of host time per simulated second (%.1f s for %.1f s)\n",
+                   prints[i].label, print.back().wall_s / print.back().total_s, print.back().wall_s,
+                   print.back().total_s);
+  }
 
   std::vector<SizeRow> sizes;
   for (size_t i = first_size_job; i < results.size(); ++i) sizes.push_back(results[i].size);
   std::vector<LatheFigures> lathe;
   for (size_t i = first_lathe_job; i < first_size_job; ++i) lathe.push_back(results[i].lathe);
   std::vector<std::vector<Figures>> engine;
-  size_t k = 2;  // after the heater's and the print's jobs
+  size_t k = 1 + prints.size();  // after the heater's and the prints' jobs
   for (const Table& t : tables) {
     engine.emplace_back();
     for (size_t i = 0; i < t.list.size(); ++i) engine.back().push_back(results[k++].figures);

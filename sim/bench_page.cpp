@@ -75,7 +75,8 @@ void print_heater(const HeaterFigures& h) {
 // standard output, formatted alike, and nothing that changes from run to run
 // (no date, no wall time), so the page only changes when a figure does.
 std::string markdown(const std::vector<SizeRow>& sizes, const std::vector<std::vector<Figures>>& engine,
-                     const HeaterFigures& heater, const PrintFigures& print, const std::vector<LatheFigures>& lathe) {
+                     const HeaterFigures& heater, const std::vector<PrintFigures>& print,
+                     const std::vector<LatheFigures>& lathe) {
   std::string o;
   auto add = [&](const std::string& s) { o += s; };
   add("# Benchmarks\n\n"

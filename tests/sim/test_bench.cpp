@@ -185,28 +185,28 @@ TEST(Bench, ParallelPageHasEveryFigureAndTheDocsPageIsCurrent) {
   ASSERT_EQ(hot_out.size(), 7u) << r.out;  // to 200 C, overshoot, settled, hold, mean, max, samples
   EXPECT_EQ(hot_page, hot_out) << page;
 
-  // The print's row ("print 1064 1064 0 0 ...": eleven words): the figures
-  // the terminal prints, on the page, and a run that printed the whole
-  // file without an error, exactly (a broken one fails the benchmark).
-  std::vector<std::string> print_out, print_page;
+  // The prints' rows ("print coarse 8 48 25 1064 ...": fifteen words): the
+  // figures the terminal prints, on the page, and runs that printed the
+  // whole file without an error, exactly (a broken one fails the benchmark).
+  std::vector<std::vector<std::string>> print_out, print_page;
   for (const std::string& line : lines_of(r.out)) {
     const std::vector<std::string> w = words(line);
-    if (w.size() == 11 && w[0] == "print") print_out.assign(w.begin() + 1, w.end());
+    if (w.size() == 15 && w[0] == "print") print_out.emplace_back(w.begin() + 1, w.end());
   }
-  const size_t print_heading = page.find("## A slicer's print (m32)");
+  const size_t print_heading = page.find("## Slicer's prints (m32)");
   ASSERT_NE(print_heading, std::string::npos) << page;
   for (const std::string& line : lines_of(page.substr(print_heading))) {
+    if (line.rfind("## ", 0) == 0 && !print_page.empty()) break;
     const std::vector<std::string> c = cells(line);
-    if (c.size() == 10 && !c[0].empty() && std::isdigit(static_cast<unsigned char>(c[0][0]))) {
-      print_page = c;
-      break;
-    }
+    if (c.size() == 14 && c[1].size() && std::isdigit(static_cast<unsigned char>(c[1][0]))) print_page.push_back(c);
   }
-  ASSERT_EQ(print_out.size(), 10u) << r.out;  // lines, answered, errors, starvations, print, estimate, ratio, run, exact, C
+  ASSERT_EQ(print_out.size(), 2u) << r.out;  // sim/bench_print.cpp's files: coarse, fine
   EXPECT_EQ(print_page, print_out) << page;
-  EXPECT_EQ(print_out[0], print_out[1]);  // every line answered
-  EXPECT_EQ(print_out[2], "0");           // no error
-  EXPECT_EQ(print_out[8], "yes");
+  for (const std::vector<std::string>& p : print_out) {
+    EXPECT_EQ(p[4], p[5]);    // lines, answered: every line answered
+    EXPECT_EQ(p[6], "0");     // no error
+    EXPECT_EQ(p[12], "yes");  // exact
+  }
 
   // The lathe's rows ("x4 K0.5 800 32000 ...": twelve words): the figures
   // the terminal prints, on the page.
@@ -223,7 +223,7 @@ TEST(Bench, ParallelPageHasEveryFigureAndTheDocsPageIsCurrent) {
 
   // Progress: every job (the hot end, the print, a scenario, a lathe row or
   // a size row) starts and ends on standard error.
-  const size_t jobs = 2 + engine.size() + lathe_out.size() + sizes.size();
+  const size_t jobs = 1 + print_out.size() + engine.size() + lathe_out.size() + sizes.size();
   size_t started = 0, ended = 0;
   for (const std::string& line : lines_of(r.err)) {
     started += line.find("] start ") != std::string::npos;
