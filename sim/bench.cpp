@@ -402,14 +402,8 @@ int main(int argc, char** argv) {
   }
   const HeaterFigures heater = results.front().heater;
   std::vector<PrintFigures> print;
-  for (size_t i = 0; i < prints.size(); ++i) {
-    print.push_back(results[1 + i].print);
-    // The host's time varies from run to run: standard error only.
-    if (print.back().total_s > 0)
-      std::fprintf(stderr, "avrmotion-bench: print %s: %.3f s of host time per simulated second (%.1f s for %.1f s)\n",
-                   prints[i].label, print.back().wall_s / print.back().total_s, print.back().wall_s,
-                   print.back().total_s);
-  }
+  for (size_t i = 0; i < prints.size(); ++i) print.push_back(results[1 + i].print);
+  print_host_time(print);
 
   std::vector<SizeRow> sizes;
   for (size_t i = first_size_job; i < results.size(); ++i) sizes.push_back(results[i].size);

@@ -85,6 +85,9 @@ struct PrintFigures {
 };
 PrintFigures measure_print(const std::string& firmware_dir, const PrintScenario& s);
 void print_print(const std::vector<PrintFigures>& p);
+// The host's time per simulated second of each print, on standard error
+// (it varies from run to run, so it is on neither the tables nor the page).
+void print_host_time(const std::vector<PrintFigures>& p);
 std::string print_markdown(const std::vector<PrintFigures>& p);
 
 // The lathe (sim/bench_lathe.cpp): one locked pass on the m16-lathe image

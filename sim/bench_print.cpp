@@ -1,7 +1,8 @@
-// The benchmark's print (bench.h, PrintFigures): a slicer's file from
-// sim/slicer_file.h, printed start to finish on the m32 image with its hot
-// end and its switches, the host one line in flight at the board's baud
-// rate (sim/serial_host.h), comments dropped as a host drops them.
+// The benchmark's prints (bench.h, PrintScenario, PrintFigures): slicer's
+// files from sim/slicer_file.h, each printed start to finish on the m32
+// image with its hot end and its switches, the host one line in flight at
+// the board's baud rate (sim/serial_host.h), comments dropped as a host
+// drops them. The host's time is measured for standard error only.
 // Exact: X back on its homed position (the file ends with G28 X0), Y and Z
 // that position plus the file's last target in steps, E on the file's
 // steps; the homed positions are the axes' decoded positions when the
@@ -124,6 +125,15 @@ void print_print(const std::vector<PrintFigures>& prints) {
                 p.exact ? "yes" : "NO", p.c_at_first_extrusion);
   }
   std::printf("\n");
+}
+
+void print_host_time(const std::vector<PrintFigures>& prints) {
+  for (size_t i = 0; i < prints.size(); ++i) {
+    const PrintFigures& p = prints[i];
+    if (p.total_s > 0)
+      std::fprintf(stderr, "avrmotion-bench: print %s: %.3f s of host time per simulated second (%.1f s for %.1f s)\n",
+                   print_scenarios()[i].label, p.wall_s / p.total_s, p.wall_s, p.total_s);
+  }
 }
 
 std::string print_markdown(const std::vector<PrintFigures>& prints) {
