@@ -1,5 +1,5 @@
 // A slicer's file, written as PrusaSlicer writes one, for the printer tests
-// and the benchmark (tests/sim/test_print_heated.cpp, sim/bench_print.cpp).
+// and the benchmark (tests/sim/test_printcore_heated.cpp, sim/bench_print.cpp).
 //
 // Contract of write_slicer_file()
 //   The file: header comments; the start sequence M107, M104 S<t>, G28,
