@@ -58,6 +58,7 @@ struct Result {
   SizeRow size;
   HeaterFigures heater;
   LatheFigures lathe;
+  PrintFigures print;
 };
 static_assert(std::is_trivially_copyable<Result>::value, "a Result crosses a pipe as bytes");
 static_assert(sizeof(Result) <= PIPE_BUF, "a Result fits the pipe in one write");
@@ -223,8 +224,12 @@ class Progress {
   void ended(size_t i, const Job& job, const Result& r, double seconds) {
     ++ended_;
     const bool heater = job.name.rfind("heater ", 0) == 0, lathe = job.name.rfind("lathe ", 0) == 0;
+    const bool print = job.name.rfind("print ", 0) == 0;
     const bool inexact = r.done && job.name.rfind("size ", 0) != 0 &&
-                         (heater ? !r.heater.ok : lathe ? !r.lathe.ran : !r.figures.ok);
+                         (heater  ? !r.heater.ok
+                          : print ? !r.print.ran || !r.print.exact
+                          : lathe ? !r.lathe.ran
+                                  : !r.figures.ok);
     std::fprintf(stderr, "avrmotion-bench: [%zu/%zu] %s %s in %.1f s (%zu of %zu ended, %.1f s since the start)%s%s\n",
                  i + 1, total_, r.done ? "done" : "BROKEN", job.name.c_str(), seconds, ended_, total_,
                  seconds_since(start_), r.done ? "" : ": ", r.done ? (inexact ? ": NOT EXACT" : "") : r.error);
@@ -358,6 +363,13 @@ int main(int argc, char** argv) {
   }
   // The hot end's run is the longest: first.
   jobs.insert(jobs.begin(), Job{"heater m32 M104 S200", [&dir](Result& r) { r.heater = measure_heater(dir); }});
+  // The prints next: the next longest.
+  const std::vector<PrintScenario>& prints = print_scenarios();
+  for (size_t i = 0; i < prints.size(); ++i) {
+    const PrintScenario s = prints[i];
+    jobs.insert(jobs.begin() + long(1 + i), Job{std::string("print m32 ") + s.label,
+                                                [&dir, s](Result& r) { r.print = measure_print(dir, s); }});
+  }
   const size_t first_lathe_job = jobs.size();
   for (const LatheScenario& s : lathe_scenarios()) {
     jobs.push_back({std::string("lathe ") + s.label + " " + s.pitch + " " + std::to_string(int(s.rpm)) + " rpm",
@@ -381,20 +393,24 @@ int main(int argc, char** argv) {
     if (!results[i].done) {
       unfinished = true;
       std::fprintf(stderr, "avrmotion-bench: %s: %s\n", jobs[i].name.c_str(), results[i].error);
-    } else if (i == 0 ? !results[i].heater.ok
-                      : i < first_lathe_job ? !results[i].figures.ok
+    } else if (i == 0   ? !results[i].heater.ok
+               : i <= prints.size() ? !results[i].print.ran || !results[i].print.exact
+               : i < first_lathe_job ? !results[i].figures.ok
                                             : i < first_size_job && !results[i].lathe.ran) {
       inexact = true;
     }
   }
   const HeaterFigures heater = results.front().heater;
+  std::vector<PrintFigures> print;
+  for (size_t i = 0; i < prints.size(); ++i) print.push_back(results[1 + i].print);
+  print_host_time(print);
 
   std::vector<SizeRow> sizes;
   for (size_t i = first_size_job; i < results.size(); ++i) sizes.push_back(results[i].size);
   std::vector<LatheFigures> lathe;
   for (size_t i = first_lathe_job; i < first_size_job; ++i) lathe.push_back(results[i].lathe);
   std::vector<std::vector<Figures>> engine;
-  size_t k = 1;  // after the heater's job
+  size_t k = 1 + prints.size();  // after the heater's and the prints' jobs
   for (const Table& t : tables) {
     engine.emplace_back();
     for (size_t i = 0; i < t.list.size(); ++i) engine.back().push_back(results[k++].figures);
@@ -402,6 +418,7 @@ int main(int argc, char** argv) {
   print_sizes(sizes);
   for (size_t t = 0; t < tables.size(); ++t) print_engine(tables[t], engine[t].data());
   print_heater(heater);
+  print_print(print);
   print_lathe(lathe);
   std::fflush(stdout);
 
@@ -413,7 +430,7 @@ int main(int argc, char** argv) {
     return unfinished ? 2 : 1;
   }
   if (!markdown_path.empty()) {
-    const std::string page = markdown(sizes, engine, heater, lathe);
+    const std::string page = markdown(sizes, engine, heater, print, lathe);
     FILE* out = std::fopen(markdown_path.c_str(), "w");
     const bool written = out && std::fwrite(page.data(), 1, page.size(), out) == page.size();
     if (!out || std::fclose(out) != 0 || !written) {

@@ -55,6 +55,41 @@ struct HeaterFigures {
 constexpr double kHeaterSeconds = 200;
 HeaterFigures measure_heater(const std::string& firmware_dir);
 
+// Slicer's files printed start to finish on the m32 (sim/bench_print.cpp):
+// sim/slicer_file.h's prints, their estimates from the limits measured from
+// the image (sim/print_limits.h), sent one line in flight at 115200 baud to
+// the image with its hot end and its switches. The print time is the
+// simulator's from the first step after M109's answer to the last step
+// before the M400 after the park: the moves the estimate times (no
+// heat-up, no homing).
+struct PrintScenario {
+  const char* label;   // one word
+  int layers;
+  int segments;        // chords of a perimeter (radius 10 mm)
+  double initial_c;    // the hot end at the start
+};
+const std::vector<PrintScenario>& print_scenarios();
+struct PrintFigures {
+  bool ran = false;            // the run finished (no fault, no budget spent)
+  bool exact = false;          // every axis on its expected steps
+  size_t lines = 0, answered = 0, errors = 0;
+  int starvations = -1;
+  double print_s = 0;          // simulated, the timed moves
+  double estimate_s = 0;       // the estimator's for the same moves
+  double total_s = 0;          // simulated, the whole run (heat-up and homing included)
+  double wall_s = 0;           // the host's time for the run (varies: standard error only)
+  double c_at_first_extrusion = 0;
+  double accel_mm_s2 = 0, rate_mm_s = 0;  // X's, as probed
+  char enabled_at_end[8] = {};
+  unsigned switch_closes = 0;  // X, Y, Z together
+};
+PrintFigures measure_print(const std::string& firmware_dir, const PrintScenario& s);
+void print_print(const std::vector<PrintFigures>& p);
+// The host's time per simulated second of each print, on standard error
+// (it varies from run to run, so it is on neither the tables nor the page).
+void print_host_time(const std::vector<PrintFigures>& p);
+std::string print_markdown(const std::vector<PrintFigures>& p);
+
 // The lathe (sim/bench_lathe.cpp): one locked pass on the m16-lathe image
 // at a steady spindle speed (sim/lathe_run.h).
 struct LatheScenario {
@@ -117,6 +152,7 @@ void print_heater(const HeaterFigures& h);
 // The Markdown page: the same figures as the tables on standard output,
 // formatted alike, and nothing that changes from run to run.
 std::string markdown(const std::vector<SizeRow>& sizes, const std::vector<std::vector<Figures>>& engine,
-                     const HeaterFigures& heater, const std::vector<LatheFigures>& lathe);
+                     const HeaterFigures& heater, const std::vector<PrintFigures>& print,
+                     const std::vector<LatheFigures>& lathe);
 
 }  // namespace bench

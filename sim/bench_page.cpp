@@ -75,7 +75,8 @@ void print_heater(const HeaterFigures& h) {
 // standard output, formatted alike, and nothing that changes from run to run
 // (no date, no wall time), so the page only changes when a figure does.
 std::string markdown(const std::vector<SizeRow>& sizes, const std::vector<std::vector<Figures>>& engine,
-                     const HeaterFigures& heater, const std::vector<LatheFigures>& lathe) {
+                     const HeaterFigures& heater, const std::vector<PrintFigures>& print,
+                     const std::vector<LatheFigures>& lathe) {
   std::string o;
   auto add = [&](const std::string& s) { o += s; };
   add("# Benchmarks\n\n"
@@ -144,6 +145,7 @@ std::string markdown(const std::vector<SizeRow>& sizes, const std::vector<std::v
                 heater.overshoot_c, heater.settled_s, heater.hold_lo_c, heater.hold_hi_c, heater.sample_cycles,
                 (unsigned long long)heater.sample_cycles_max, heater.samples);
   add(row);
+  add(print_markdown(print));
 
   add("## Lathe (m16-lathe)\n\n"
       "One locked `G33 Z-900 <pitch>` pass per row on the simulated spindle (`sim/spindle_encoder.h`,\n"

@@ -19,6 +19,7 @@
 #include "lcd_model.h"
 #include "machine.h"
 #include "plot.h"
+#include "print_watch.h"
 #include "progress.h"
 #include "pty_run.h"
 #include "report.h"
@@ -249,6 +250,12 @@ int main(int argc, char** argv) {
     } else if (!endstop_at.empty() || endstop_params.bounce_us > 0) {
       throw std::runtime_error("--endstop/--endstop-bounce: this board has no endstops (or --no-endstops)");
     }
+    // A printer (a hot end and a step/dir extruder): the print's measurements.
+    std::unique_ptr<sim::PrintWatch> print_watch;
+    bool step_dir_e = false;
+    for (uint8_t i = 0; i < machine.board().axis_count; ++i)
+      step_dir_e |= machine.board().axes[i].name == 'E' && machine.board().axes[i].kind == am::AxisKind::step_dir;
+    if (plant && step_dir_e) print_watch.reset(new sim::PrintWatch(machine, plant.get(), switches.get()));
     std::unique_ptr<sim::SpindleEncoder> spindle_model;
     if (machine.board().spindle_pins[0] != am::kNoPin) {
       if (spindle.profile.empty()) spindle.profile.push_back({0, 0});
@@ -324,10 +331,10 @@ int main(int argc, char** argv) {
     if (lcd_log && !pending_screen.empty()) log_screen();
     const sim::PtyStats* pty_stats = pty ? &stats : nullptr;
     if (report.empty()) {
-      sim::write_report(std::cout, machine, end, pty_stats, plant.get(), wall_seconds);
+      sim::write_report(std::cout, machine, end, pty_stats, plant.get(), wall_seconds, print_watch.get());
     } else {
       std::ofstream out(report);
-      sim::write_report(out, machine, end, pty_stats, plant.get(), wall_seconds);
+      sim::write_report(out, machine, end, pty_stats, plant.get(), wall_seconds, print_watch.get());
     }
     const std::string title = pty ? "pty" : input == "-" ? "" : input;
     if (!plot.empty()) sim::write_run_plot(plot, machine, sim::PlotLabel{title, end, plant.get()});

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string>
 
+#include "print_watch.h"
 #include "pty_run.h"
 
 namespace sim {
@@ -67,7 +68,7 @@ std::string progress_line(Machine& m) {
 }
 
 void write_report(std::ostream& out, Machine& m, RunEnd end, const PtyStats* pty, const ThermalPlant* plant,
-                  double wall_seconds) {
+                  double wall_seconds, const PrintWatch* print) {
   const am::BoardDescriptor& b = m.board();
   SerialHost& serial = m.serial();
   out << "{\n";
@@ -139,6 +140,22 @@ void write_report(std::ostream& out, Machine& m, RunEnd end, const PtyStats* pty
       << ", \"last_step_s\": " << number(moved ? double(last_step) / b.f_cpu : 0)
       << ", \"motion_s\": " << number(moved ? double(last_step - first_step) / b.f_cpu : 0)
       << ", \"filament_mm\": " << number(filament_mm) << "},\n";
+  if (print) {
+    // Measured from the pins and the plant (print_watch.h); -1: not seen.
+    const double f = b.f_cpu;
+    out << "  \"print\": {\"first_extrusion_s\": " << number(print->extruded() ? print->first_extrusion_cycle() / f : -1)
+        << ", \"hotend_c_at_first_extrusion\": " << number(print->sensor_c_at_first_extrusion())
+        << ", \"block_c_at_first_extrusion\": " << number(print->block_c_at_first_extrusion())
+        << ", \"heater_pin_at_end\": " << print->heater_pin_now()
+        << ", \"heater_duty_last_100ms\": " << number(print->heater_duty_last())
+        << ", \"target_c_at_end\": " << number(print->target_c_last())
+        << ", \"drivers_enabled_at_end\": " << quoted(print->enabled_now());
+    for (const AxisTrace& a : m.axes()) {
+      if (print->switches() && print->switches()->has(a.name))
+        out << ", \"switch_closes_" << a.name << "\": " << print->switch_closes(a.name);
+    }
+    out << "},\n";
+  }
   if (wall_seconds >= 0) {
     const double simulated = double(m.cycles()) / b.f_cpu;
     out << "  \"wall_seconds\": " << number(wall_seconds) << ",\n";

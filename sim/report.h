@@ -10,13 +10,15 @@
 namespace sim {
 
 struct PtyStats;
+class PrintWatch;
 
 // `pty` (a --pty run) adds the "pty" object: sessions, bytes each way, the
 // pacing figures (docs/simulator-report.md); `plant`, the hot end attached
 // to a board with a heater, the "thermal" key; `wall_seconds` >= 0, the
-// host's time for the run, "wall_seconds" and "simulated_per_wall".
+// host's time for the run, "wall_seconds" and "simulated_per_wall"; `print`
+// (sim/print_watch.h: a board with an extruder), the "print" object.
 void write_report(std::ostream& out, Machine& m, RunEnd end, const PtyStats* pty = nullptr,
-                  const ThermalPlant* plant = nullptr, double wall_seconds = -1);
+                  const ThermalPlant* plant = nullptr, double wall_seconds = -1, const PrintWatch* print = nullptr);
 
 // The report's name for how a run ended ("done", "timeout", "cpu_stopped",
 // "interrupted"); the picture's title uses it too.

@@ -7,7 +7,8 @@
 #   printcore_stream.py PORT FILE [--corrupt N] [--guard SECONDS]
 #
 # --corrupt N changes the checksum of the first sending of line N (the
-# printer must ask for it again, printcore then sends its stored copy).
+# printer must ask for it again, printcore then sends its stored copy);
+# without it (or N < 0) nothing is changed.
 # After the print it sends M400 and waits for every line sent to have its
 # `ok`, then closes the port and prints one JSON object on standard output:
 #   sent: lines written (M110s and resends included) but M105
@@ -81,7 +82,7 @@ def main():
 
     def corrupting_write(data):
         text = data.decode("ascii")
-        if not st["corrupted"] and text.startswith("N%d " % args.corrupt):
+        if args.corrupt >= 0 and not st["corrupted"] and text.startswith("N%d " % args.corrupt):
             star = text.rindex("*")
             text = text[: star + 1] + str((int(text[star + 1 :]) + 1) % 256) + "\n"
             st["corrupted"] = True

@@ -2,8 +2,9 @@
 // tables as one job at a time, its --markdown page carries every figure of
 // those tables (and the image sizes, and the quoted anchors), it says what
 // it is doing on standard error, docs/benchmarks.md is the page it writes
-// today, and a broken run fails it. The whole benchmark takes a few seconds
-// on two cores.
+// today, and a broken run fails it. The whole benchmark takes about a
+// minute on two cores (the hot end's 200 s and the print's 191 s of
+// simulated time are the longest jobs).
 #include <gtest/gtest.h>
 #include <sim_core_config.h>
 #include <sys/wait.h>
@@ -184,6 +185,29 @@ TEST(Bench, ParallelPageHasEveryFigureAndTheDocsPageIsCurrent) {
   ASSERT_EQ(hot_out.size(), 7u) << r.out;  // to 200 C, overshoot, settled, hold, mean, max, samples
   EXPECT_EQ(hot_page, hot_out) << page;
 
+  // The prints' rows ("print coarse 8 48 25 1064 ...": fifteen words): the
+  // figures the terminal prints, on the page, and runs that printed the
+  // whole file without an error, exactly (a broken one fails the benchmark).
+  std::vector<std::vector<std::string>> print_out, print_page;
+  for (const std::string& line : lines_of(r.out)) {
+    const std::vector<std::string> w = words(line);
+    if (w.size() == 15 && w[0] == "print") print_out.emplace_back(w.begin() + 1, w.end());
+  }
+  const size_t print_heading = page.find("## Slicer's prints (m32)");
+  ASSERT_NE(print_heading, std::string::npos) << page;
+  for (const std::string& line : lines_of(page.substr(print_heading))) {
+    if (line.rfind("## ", 0) == 0 && !print_page.empty()) break;
+    const std::vector<std::string> c = cells(line);
+    if (c.size() == 14 && c[1].size() && std::isdigit(static_cast<unsigned char>(c[1][0]))) print_page.push_back(c);
+  }
+  ASSERT_EQ(print_out.size(), 2u) << r.out;  // sim/bench_print.cpp's files: coarse, fine
+  EXPECT_EQ(print_page, print_out) << page;
+  for (const std::vector<std::string>& p : print_out) {
+    EXPECT_EQ(p[4], p[5]);    // lines, answered: every line answered
+    EXPECT_EQ(p[6], "0");     // no error
+    EXPECT_EQ(p[12], "yes");  // exact
+  }
+
   // The lathe's rows ("x4 K0.5 800 32000 ...": twelve words): the figures
   // the terminal prints, on the page.
   std::vector<std::vector<std::string>> lathe_out, lathe_page;
@@ -197,9 +221,9 @@ TEST(Bench, ParallelPageHasEveryFigureAndTheDocsPageIsCurrent) {
   ASSERT_EQ(lathe_out.size(), 13u) << r.out;  // sim/bench_lathe.cpp's rows
   EXPECT_EQ(lathe_page, lathe_out) << page;
 
-  // Progress: every job (the hot end, a scenario, a lathe row or a size
-  // row) starts and ends on standard error.
-  const size_t jobs = 1 + engine.size() + lathe_out.size() + sizes.size();
+  // Progress: every job (the hot end, the print, a scenario, a lathe row or
+  // a size row) starts and ends on standard error.
+  const size_t jobs = 1 + print_out.size() + engine.size() + lathe_out.size() + sizes.size();
   size_t started = 0, ended = 0;
   for (const std::string& line : lines_of(r.err)) {
     started += line.find("] start ") != std::string::npos;

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "board_info.h"
+#include "printcore_run.h"
 #include "pty_client.h"
 #include "sim_fixture.h"
 
@@ -98,22 +99,7 @@ Print slicer_print(int layers, int segments) {
   return p;
 }
 
-// The summary printcore_stream.py prints: one number, or the list of the
-// `Error:` lines.
-long summary_number(const std::string& json, const std::string& key) {
-  std::smatch m;
-  return std::regex_search(json, m, std::regex("\"" + key + "\": (-?[0-9]+)")) ? std::stol(m[1]) : -1;
-}
-
-std::string run_output(const std::string& command) {
-  std::string out;
-  if (FILE* f = popen(command.c_str(), "r")) {
-    char buf[4096];
-    for (size_t n; (n = fread(buf, 1, sizeof buf, f)) > 0;) out.append(buf, n);
-    if (pclose(f) != 0) out += "\n<exit status not 0>";
-  }
-  return out;
-}
+using printcore_run::summary_number;
 
 }  // namespace
 
@@ -134,9 +120,7 @@ TEST(Printcore, ASlicerPrintStreamsThroughThePtyWithAResendAndEndsExactly) {
   // printcore numbers the file's lines from 0 (after its `N-1 M110`): break
   // the first sending of the one in the middle.
   const long corrupt = long(sent_lines / 2);
-  const std::string summary = run_output(std::string(AVRMOTION_PRINTCORE_PYTHON) + " '" + AVRMOTION_SOURCE_DIR +
-                                         "/tests/sim/printcore_stream.py' " + port + " '" + file + "' --corrupt " +
-                                         std::to_string(corrupt) + " 2>/dev/null");
+  const std::string summary = printcore_run::stream(port, file, "--corrupt " + std::to_string(corrupt));
   std::printf("printcore: %s\n", summary.c_str());
   ASSERT_EQ(sim.wait_exit(), 0) << sim.stderr_text();
   const std::string json = simtest::slurp(report);
