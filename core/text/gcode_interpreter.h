@@ -135,6 +135,12 @@ class GcodeInterpreter {
   void restore(const GcodeState<N>& state) { state_ = state; }
   const GcodeAxis& axis(uint8_t i) const { return axes_[i]; }
 
+  // M221's flow, percent (a printer's): each later move's E steps are its
+  // distance's times flow / 100, rounded half away from zero; the
+  // difference goes into E's offset, so the program position stays.
+  void set_flow(uint16_t percent) { flow_ = percent; }
+  uint16_t flow() const { return flow_; }
+
   // Homing has put the axes in mask `axes` at machine positions steps[]
   // (G28): no G92 offset is left on them and their program positions follow
   // from the steps.
@@ -181,6 +187,8 @@ class GcodeInterpreter {
  private:
   GcodeError arc(const GcodeBlock& b, const GcodeModal& m, GcodeAction<N>& a) const;
   GcodeError heater(const GcodeBlock& b, GcodeAction<N>& a) const;
+  GcodeError heater_words(const GcodeBlock& b, GcodeHeaterCommand& h) const;
+  GcodeError printer(const GcodeBlock& b, GcodePrinterCommand<N>& p) const;
 
   // steps = length_to_steps(coord) + offset on axis i; false beyond int32.
   bool machine_steps(uint8_t i, int32_t coord, int32_t offset, int32_t& steps) const {
@@ -190,6 +198,7 @@ class GcodeInterpreter {
   const GcodeAxis* axes_;
   uint32_t board_letters_;  // gcode_letter_bit() of every axis letter
   GcodeState<N> state_;
+  uint16_t flow_ = 100;  // M221: percent of every E move's steps (a printer's)
 };
 
 template <uint8_t N, bool Arcs, bool Heater, bool MarlinDwell, bool Modes>
@@ -270,6 +279,7 @@ GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes>::execute(const 
   for (uint8_t i = 0; i < N; ++i, bit = uint8_t(bit << 1), ++ax, ++st, ++coord, ++steps, ++off) {
     *coord = st->coord;
     *steps = st->steps;
+    *off = st->offset;
     const char letter = ax->letter;
     if (!b.has(letter)) continue;
     named |= bit;
@@ -291,6 +301,13 @@ GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes>::execute(const 
     } else if (((letter == 'E' ? m.e_relative : m.incremental) && !add_checked(*coord, len, len)) ||
                !length_to_steps(len, ax->steps_per_m, t) || !add_checked(t, st->offset, *steps)) {
       return GcodeError::target_out_of_range;
+    }
+    if (Heater && letter == 'E' && flow_ != 100) {
+      int32_t delta, flowed;
+      if (!add_checked(*steps, -st->steps, delta) || !scale_round(delta, flow_, 100, flowed) ||
+          !add_checked(st->steps, flowed, *steps) ||
+          !add_checked(st->offset, flowed - delta, *off))
+        return GcodeError::target_out_of_range;
     }
     *coord = len;
   }
@@ -344,13 +361,14 @@ GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes>::execute(const 
     if (!(named & bit)) continue;
     out->coord = a.coord[i];
     out->steps = a.target[i];
-    if (set_position) out->offset = offset[i];
+    out->offset = offset[i];
   }
   return GcodeError::none;
 }
 
 }  // namespace am
 
-// GcodeInterpreter::arc() and heater(), apart (one concern a file).
+// GcodeInterpreter::arc(), heater() and printer(), apart (one concern a file).
 #include "gcode_arc_words.h"
 #include "gcode_heater_codes.h"
+#include "gcode_printer_codes.h"

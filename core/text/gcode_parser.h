@@ -95,13 +95,15 @@ namespace am {
   X(mode_not_available, "mode not available on this axis")                   \
   X(arcs_not_here, "G2/G3 arcs are not in this board's image")             \
   X(no_heater, "this board has no heater")                                   \
-  /* heater_code_alone .. bad_cycles: only a board with a heater meets them */ \
+  /* heater_code_alone .. bad_limit: only a board with a heater meets them */ \
   X(heater_code_alone, "heater code must be alone on the line")            \
   X(missing_temperature, "code needs S (M109: S or R)")                     \
   X(bad_temperature, "temperature must be 0 .. 260 C")                       \
   X(bad_interval, "M155 S must be whole seconds 0 .. 60")                    \
   X(bad_gains, "gains must be P, I 0 .. 1000, D 0 .. 10000")                \
-  X(bad_cycles, "M303 C must be 3 .. 20")
+  X(bad_cycles, "M303 C must be 3 .. 20")                                   \
+  X(bad_percent, "M73 P 0 .. 100 and R in whole numbers, M220/M221 S 10 .. 500")\
+  X(bad_limit, "M201/M203/M204 values above 0, M205 J 0.001 .. 10 mm")
 
 #define AM_GCODE_ERROR_ENUM(name, text) name,
 enum class GcodeError : uint8_t { AM_GCODE_ERRORS(AM_GCODE_ERROR_ENUM) };
@@ -123,6 +125,7 @@ enum class GcodeCode : uint8_t {
   m82, m83,             // extruder
   m17, m18, m84, m114, m350, m400, m999,  // machine
   m104, m105, m106, m107, m108, m109, m155, m301, m303, m500,  // machine: the heater's and the fan's (M500: the gains)
+  m73, m201, m203, m204, m205, m220, m221,  // machine: the printer's progress, limits, feed and flow
 };
 
 inline GcodeGroup gcode_group(GcodeCode c) {
@@ -210,6 +213,9 @@ inline GcodeCode code_of(char letter, int32_t number) {
   if (n == 301) return GcodeCode::m301;
   if (n == 303) return GcodeCode::m303;
   if (n == 500) return GcodeCode::m500;
+  if (n == 73) return GcodeCode::m73;
+  if (n >= 201 && n <= 205 && n != 202) return GcodeCode(uint8_t(GcodeCode::m201) + (n - 201 - (n > 202)));
+  if (n == 220 || n == 221) return GcodeCode(uint8_t(GcodeCode::m220) + (n - 220));
   return GcodeCode::none;
 }
 
