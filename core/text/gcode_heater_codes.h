@@ -31,31 +31,17 @@ inline bool whole_in(int32_t v, uint8_t lo, uint8_t hi, uint8_t& out) {
 }  // namespace gcode_detail
 
 // A heater M-code line (see Heater codes); nothing in the state changes.
-template <uint8_t N, bool Arcs, bool Heater, bool MarlinDwell, bool Modes>
-GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes>::heater(const GcodeBlock& b, GcodeAction<N>& a) const {
+template <uint8_t N, bool Arcs, bool Heater, bool MarlinDwell, bool Modes, bool Printer>
+GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes, Printer>::heater(const GcodeBlock& b, GcodeAction<N>& a) const {
   const GcodeCode code = b.group(GcodeGroup::machine);
   const bool fan = code == GcodeCode::m106 || code == GcodeCode::m107;
   const bool printer_code = code >= GcodeCode::m73;
-  if (!Heater) return fan || printer_code ? GcodeError::unsupported_code : GcodeError::no_heater;
+  if (!Heater || (printer_code && !Printer))
+    return fan || printer_code ? GcodeError::unsupported_code : GcodeError::no_heater;
   for (uint8_t g = 0; g < kGcodeGroups; ++g)
     if (g != uint8_t(GcodeGroup::machine) && b.code[g] != GcodeCode::none) return GcodeError::heater_code_alone;
-  const GcodeError e = printer_code ? printer(b, a.printer) : heater_words(b, a.heater);
-  if (e != GcodeError::none) return e;
-  for (uint8_t i = 0; i < N; ++i) {
-    a.coord[i] = state_.axis[i].coord;
-    a.target[i] = state_.axis[i].steps;
-  }
-  a.axes = 0;
-  a.kind = printer_code ? GcodeActionKind::printer : GcodeActionKind::heater;
-  return GcodeError::none;
-}
-
-// A heater code's words into its command.
-template <uint8_t N, bool Arcs, bool Heater, bool MarlinDwell, bool Modes>
-GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes>::heater_words(const GcodeBlock& b,
-                                                                               GcodeHeaterCommand& h) const {
-  const GcodeCode code = b.group(GcodeGroup::machine);
-  const bool fan = code == GcodeCode::m106 || code == GcodeCode::m107;
+  if (printer_code) return printer(b, a);
+  GcodeHeaterCommand& h = a.heater;
   h.code = code;
   const bool m109 = code == GcodeCode::m109, m155 = code == GcodeCode::m155;
   const bool m301 = code == GcodeCode::m301, m303 = code == GcodeCode::m303;
@@ -87,7 +73,7 @@ GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes>::heater_words(c
     h.count = kGcodeAutotuneCycles;
     if (b.has('C') && !gcode_detail::whole_in(b.get('C'), 3, 20, h.count)) return GcodeError::bad_cycles;
   }
-  return GcodeError::none;
+  return hold_position(a, GcodeActionKind::heater);
 }
 
 }  // namespace am

@@ -154,12 +154,12 @@ constexpr uint32_t kGcodeAxisLetters = gcode_letter_bit('X') | gcode_letter_bit(
                                        gcode_letter_bit('B') | gcode_letter_bit('C');
 constexpr uint32_t kGcodeValueLetters = kGcodeAxisLetters | gcode_letter_bit('D') | gcode_letter_bit('F') |
                                         gcode_letter_bit('I') | gcode_letter_bit('J') | gcode_letter_bit('K') |
-                                        gcode_letter_bit('N') | gcode_letter_bit('P') | gcode_letter_bit('R') |
-                                        gcode_letter_bit('S');
+                                        gcode_letter_bit('N') | gcode_letter_bit('P') | gcode_letter_bit('Q') |
+                                        gcode_letter_bit('R') | gcode_letter_bit('S') | gcode_letter_bit('T');
 
 // A value letter's slot in GcodeBlock::value: how many value letters come
 // before it (a constant where the letter is; the block is on the stack of
-// every line, so it holds the 15 value letters, not all 26).
+// every line, so it holds the 17 value letters, not all 26).
 constexpr uint8_t gcode_value_slot(char upper_letter) {
   return uint8_t(__builtin_popcountl(kGcodeValueLetters & (gcode_letter_bit(upper_letter) - 1)));
 }

@@ -76,7 +76,7 @@ struct GcodeHeaterCommand {
 // What a printer M-code asks (GcodeActionKind::printer, see Printer codes):
 // the words of the code's slots, bit k of `given` for slot k. Slots:
 // M201/M203 the board's axes in order; M204 P T R S; M205 J; M73 P R;
-// M220 S; M221 S T. Lengths (M201 M203 M204 mm/s^2 or mm/s, M205 J mm) in
+// M220 S; M221 S. Lengths (M201 M203 M204 mm/s^2 or mm/s, M205 J mm) in
 // 1/10000 mm, percent and minutes whole, T as given (0).
 template <uint8_t N>
 struct GcodePrinterCommand {

@@ -3,6 +3,7 @@
 
 #include <avr/pgmspace.h>
 
+#include "../../core/text/fixed_number.h"
 #include "../../hal/avr/uart.h"
 #include "../apps/cnc/gcode.h"
 #include "../apps/cnc/reply.h"
@@ -13,38 +14,24 @@ namespace {
 
 using Command = am::GcodePrinterCommand<board::Axes::count>;
 
-void write_whole(uint32_t v) { hal::uart::write_u32(v); }
-
-// `echo:<code> <axis> clamped to <v> <unit>`: v in the unit, whole.
-void say_clamped(const Command& c, uint8_t axis, float v) {
-  reply::info_begin();
-  hal::uart::write_P(c.code == am::GcodeCode::m201 ? PSTR("M201 ") : PSTR("M203 "));
-  hal::uart::write(board::Axes::name_at(axis));
-  hal::uart::write_P(PSTR(" clamped to "));
-  write_whole(uint32_t(v + 0.5f));
-  hal::uart::write_P(c.code == am::GcodeCode::m201 ? PSTR(" mm/s^2") : PSTR(" mm/s"));
-  reply::info_end();
-}
-
-// M201, M203: each axis given, from 1/10000 mm/s^2 or mm/s into steps,
+// M201, M203: each axis given, from 1/10000 mm/s^2 or mm/s into steps, held
 // within the board's limits.
 void axis_limits(const Command& c) {
   const bool accel = c.code == am::GcodeCode::m201;
   for (uint8_t a = 0; a < board::Axes::count; ++a) {
     if (!(c.given & (1u << a))) continue;
-    const float per_mm = float(gcode::steps_per_m(a)) * 1e-3f;
     const uint32_t own = board::Axes::max_rate_at(a);
-    const float top = accel ? float(board::kMaxAccel) : float(own ? own : board::kMaxStepRate);
-    const float low = accel ? 2.0f : 1.0f;
-    float steps = float(c.value[a]) * 1e-4f * per_mm;
-    if (steps > top || steps < low) {
-      steps = steps > top ? top : low;
-      say_clamped(c, a, steps / per_mm);
+    const int32_t top = int32_t(accel ? board::kMaxAccel : own ? own : board::kMaxStepRate);
+    const int32_t low = accel ? 2 : 1;
+    int32_t steps = top;  // when the product overflows
+    if (!am::scale_round(c.value[a], gcode::steps_per_m(a), 10000000ul, steps) || steps > top || steps < low) {
+      steps = steps < low ? low : top;
+      reply::info_begin();
+      hal::uart::write(board::Axes::name_at(a));
+      hal::uart::write_P(PSTR(" held within the board's limit"));
+      reply::info_end();
     }
-    if (accel)
-      path::set_max_accel(a, steps);
-    else
-      path::set_max_rate(a, steps);
+    path::set_axis_limit(a, accel, float(steps));
   }
 }
 
@@ -53,12 +40,12 @@ void progress(const Command& c) {
   hal::uart::write_P(PSTR("Progress:"));
   if (c.given & 1) {
     hal::uart::write(' ');
-    write_whole(uint32_t(c.value[0]));
+    hal::uart::write_u32(uint32_t(c.value[0]));
     hal::uart::write('%');
   }
   if (c.given & 2) {
     hal::uart::write(' ');
-    write_whole(uint32_t(c.value[1]));
+    hal::uart::write_u32(uint32_t(c.value[1]));
     hal::uart::write_P(PSTR(" min left"));
   }
   reply::info_end();
@@ -77,7 +64,7 @@ void percent(const Command& c) {
   }
   reply::info_begin();
   hal::uart::write_P(feed ? PSTR("FR:") : PSTR("E0 Flow: "));
-  write_whole(feed ? gcode::feed_percent() : gcode::flow());
+  hal::uart::write_u32(feed ? gcode::feed_percent() : gcode::flow());
   hal::uart::write('%');
   reply::info_end();
 }

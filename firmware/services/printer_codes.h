@@ -14,7 +14,7 @@
 //     M203 <axes>  each axis's top feed, mm/s
 //                  held within the board's (the step engine's top rate,
 //                  board::kMaxAccel; at least 1 step/s and 2 steps/s^2):
-//                  `echo:M203 X clamped to <v> mm/s` when it had to be
+//                  `echo:<axis> held within the board's limit` when it had to be
 //     M204 P T R S the acceleration along the path of the moves that
 //                  extrude, travel, only retract; S: print and travel
 //     M205 J       the junction deviation, mm (X Y Z E S T B: no jerk here)

@@ -72,7 +72,8 @@ constexpr bool kModes = AnyModes<board::Axes>::value();
 
 // A Marlin host's G4 P is milliseconds (G4 S seconds); a board whose axes
 // have no excitation modes refuses M350 whole.
-using Interpreter = am::GcodeInterpreter<kAxes, board::kArcs, board::kHeater, reply::kMarlin, kModes>;
+using Interpreter =
+    am::GcodeInterpreter<kAxes, board::kArcs, board::kHeater, reply::kMarlin, kModes, board::kHeater && board::kPrinterCodes>;
 Interpreter& interpreter() {
   static Interpreter instance(AxisTable<board::Axes>::value);
   return instance;
@@ -139,12 +140,10 @@ constexpr am::GcodeAction<kAxes>& action = pending::line.action;
 bool pending;
 int32_t coord_before[kAxes];  // program position before the pending line
 uint16_t feed_percent_ = 100;  // M220 (a printer's)
+float feed_scale = 1e-4f;      // of action.feed (1/10000 mm/min) to mm/min, M220's percent applied
 
-// A feed move's F in mm/min, M220's override applied.
-float feed_of_action() {
-  const float f = float(action.feed) * 1e-4f;
-  return board::kHeater ? f * float(feed_percent_) * 0.01f : f;
-}
+// A feed move's F in mm/min.
+float feed_of_action() { return float(action.feed) * (board::kPrinterCodes ? feed_scale : 1e-4f); }
 
 // G2/G3: chords in position units, which are steps on the axes of a board
 // with arcs, so every chord end is a step position within half a step of
@@ -305,12 +304,16 @@ void refuse(am::GcodeError e) {
 }
 
 bool accept(const char* line) {
-  if (board::kHeater && message(line)) return false;
+  if (board::kPrinterCodes && message(line)) return false;
   const am::GcodeState<kAxes> before = interpreter().state();
   for (uint8_t i = 0; i < kAxes; ++i) {
     coord_before[i] = before.axis[i].coord;
   }
-  const am::GcodeError e = interpreter().run(line, action);
+  am::GcodeError e = interpreter().run(line, action);
+  // M303 where the board leaves the autotune out (board::kAutotune).
+  if (!board::kAutotune && e == am::GcodeError::none && action.kind == am::GcodeActionKind::heater &&
+      action.heater.code == am::GcodeCode::m303)
+    e = am::GcodeError::unsupported_code;
   if (e != am::GcodeError::none) {
     if (reply::kMarlin && e == am::GcodeError::unsupported_code)
       reply::unknown_command(line);
@@ -380,7 +383,7 @@ void write_state() {
 bool execute() {
   if (!pending) return true;
   if (action.kind == am::GcodeActionKind::heater) return heater_code();
-  if (board::kHeater && action.kind == am::GcodeActionKind::printer) {
+  if (board::kPrinterCodes && action.kind == am::GcodeActionKind::printer) {
     pending = false;
     printer_codes::run(action.printer);
     return true;
@@ -450,7 +453,10 @@ uint32_t steps_per_m(uint8_t axis) { return AxisTable<board::Axes>::value[axis].
 
 uint32_t feed_mm_per_min() { return uint32_t(interpreter().state().modal.feed) / 10000u; }
 
-void set_feed_percent(uint16_t percent) { feed_percent_ = percent; }
+void set_feed_percent(uint16_t percent) {
+  feed_percent_ = percent;
+  feed_scale = float(percent) * 1e-6f;
+}
 uint16_t feed_percent() { return feed_percent_; }
 void set_flow(uint16_t percent) { interpreter().set_flow(percent); }
 uint16_t flow() { return interpreter().flow(); }
