@@ -197,7 +197,7 @@ class GcodeInterpreter {
 
   GcodeError run(const char* line, GcodeAction<N>& action) {
     GcodeBlock block;
-    const GcodeError e = parse_gcode(line, block);
+    const GcodeError e = parse_gcode<Printer>(line, block);
     return e != GcodeError::none ? e : execute(block, action);
   }
 

@@ -10,7 +10,9 @@
 //   as the '*' that split_checksum() found) and returns GcodeError::none with
 //   `block` filled, or the first error found from the left; on an error
 //   `block` is unspecified. It reads nothing past the NUL / `end` and writes
-//   nothing outside `block`; it keeps no state of its own.
+//   nothing outside `block`; it keeps no state of its own. parse_gcode<false>
+//   knows none of the printer's codes (M3 M5 M73 M201 M203 M204 M205 M220
+//   M221: unsupported_code), for an image that has none of them.
 //
 //   Grammar: words are a letter (either case) and a number, blanks (space,
 //   tab) allowed between words and between the letter and its number, none
@@ -125,6 +127,7 @@ enum class GcodeCode : uint8_t {
   m82, m83,             // extruder
   m17, m18, m84, m114, m350, m400, m999,  // machine
   m104, m105, m106, m107, m108, m109, m155, m301, m303, m500,  // machine: the heater's and the fan's (M500: the gains)
+  m3, m5,                                   // machine: the seed's hot end on and off (a printer's)
   m73, m201, m203, m204, m205, m220, m221,  // machine: the printer's progress, limits, feed and flow
 };
 
@@ -185,7 +188,11 @@ inline bool blank(char c) { return c == ' ' || c == '\t'; }
 // The code of G<n> / M<n>, none if unsupported. Comparisons,
 // not a switch: a switch over results becomes a lookup table, which avr-gcc
 // puts in RAM.
-inline GcodeCode code_of(char letter, int32_t number) {
+// Printer: the printer's codes (M3 M5 M73 M201 M203 M204 M205 M220 M221)
+// too; a parser without them reads them as unsupported (and links none of
+// their compares).
+template <bool Printer>
+GcodeCode code_of(char letter, int32_t number) {
   if (number < 0 || number > 999) return GcodeCode::none;
   const uint16_t n = uint16_t(number);  // 16-bit compares: half the code of 32-bit ones on the AVR
   if (letter == 'G') {
@@ -213,6 +220,8 @@ inline GcodeCode code_of(char letter, int32_t number) {
   if (n == 301) return GcodeCode::m301;
   if (n == 303) return GcodeCode::m303;
   if (n == 500) return GcodeCode::m500;
+  if (!Printer) return GcodeCode::none;
+  if (n == 3 || n == 5) return GcodeCode(uint8_t(GcodeCode::m3) + (n == 5));
   if (n == 73) return GcodeCode::m73;
   if (n >= 201 && n <= 205 && n != 202) return GcodeCode(uint8_t(GcodeCode::m201) + (n - 201 - (n > 202)));
   if (n == 220 || n == 221) return GcodeCode(uint8_t(GcodeCode::m220) + (n - 220));
@@ -221,7 +230,8 @@ inline GcodeCode code_of(char letter, int32_t number) {
 
 }  // namespace gcode_detail
 
-inline GcodeError parse_gcode(const char* p, GcodeBlock& b, const char* end = nullptr) {
+template <bool Printer = true>
+GcodeError parse_gcode(const char* p, GcodeBlock& b, const char* end = nullptr) {
   using namespace gcode_detail;
   b.words = 0;
   for (uint8_t g = 0; g < kGcodeGroups; ++g) b.code[g] = GcodeCode::none;
@@ -265,7 +275,7 @@ inline GcodeError parse_gcode(const char* p, GcodeBlock& b, const char* end = nu
     if (line_number && (!first_word || had_point || v < 0)) return GcodeError::bad_line_number;
     first_word = false;
     if (is_code) {
-      const GcodeCode code = had_point || v < 0 ? GcodeCode::none : code_of(letter, v);
+      const GcodeCode code = had_point || v < 0 ? GcodeCode::none : code_of<Printer>(letter, v);
       if (code == GcodeCode::none) return GcodeError::unsupported_code;
       GcodeCode& slot = b.code[uint8_t(gcode_group(code))];
       if (slot != GcodeCode::none) return GcodeError::modal_group_conflict;

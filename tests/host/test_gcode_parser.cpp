@@ -134,10 +134,16 @@ TEST(GcodeParser, CodesAndTheirGroups) {
 }
 
 TEST(GcodeParser, UnsupportedCodes) {
-  for (const char* line : {"G30", "G5", "G38", "G80", "G93", "G95", "G1.0", "G1.5", "G92.1", "G-1", "M0", "M3",
+  for (const char* line : {"G30", "G5", "G38", "G80", "G93", "G95", "G1.0", "G1.5", "G92.1", "G-1", "M0", "M4",
                            "M110", "M117", "M202", "M222", "M998", "M350.5", "G214748"})
     EXPECT_EQ(parse(line), GcodeError::unsupported_code) << line;
   EXPECT_EQ(parse("G9999999999"), GcodeError::out_of_range);
+  // A parser without the printer's codes (an image without them).
+  for (const char* line : {"M3 S200", "M5", "M73 P1", "M201 X1", "M203 X1", "M204 S1", "M205 J1", "M220", "M221"}) {
+    GcodeBlock b;
+    EXPECT_EQ(am::parse_gcode<false>(line, b), GcodeError::unsupported_code) << line;
+    EXPECT_EQ(am::parse_gcode<true>(line, b), GcodeError::none) << line;
+  }
 }
 
 TEST(GcodeParser, ModalGroupConflicts) {

@@ -132,6 +132,27 @@ TEST(GcodePrinterCodes, RefusalsChangeNothing) {
   }
 }
 
+// The seed's M3 S<C> / M5: the hot end on at S, as M104; off, as M104 S0.
+TEST(GcodePrinterCodes, TheSeedsM3AndM5AreTheHotEndOnAndOff) {
+  Printer g(kPrinter);
+  Ran r = run(g, "M3 S215.5");
+  ASSERT_EQ(r.error, GcodeError::none);
+  EXPECT_EQ(r.action.kind, am::GcodeActionKind::heater);
+  EXPECT_EQ(r.action.heater.code, am::GcodeCode::m104);
+  EXPECT_EQ(r.action.heater.target, 21550);
+  r = run(g, "M5");
+  ASSERT_EQ(r.error, GcodeError::none);
+  EXPECT_EQ(r.action.heater.code, am::GcodeCode::m104);
+  EXPECT_EQ(r.action.heater.target, 0);
+  EXPECT_EQ(run(g, "M3").error, GcodeError::missing_temperature);
+  EXPECT_EQ(run(g, "M3 S261").error, GcodeError::bad_temperature);
+  EXPECT_EQ(run(g, "M5 S100").error, GcodeError::unused_word);
+  EXPECT_EQ(run(g, "G1 X1 M3 S100").error, GcodeError::heater_code_alone);
+  NoPrinter without(kPrinter);
+  EXPECT_EQ(run(without, "M3 S200").error, GcodeError::unsupported_code);
+  EXPECT_EQ(run(without, "M5").error, GcodeError::unsupported_code);
+}
+
 TEST(GcodePrinterCodes, AnInterpreterWithoutThemRefusesThem) {
   NoPrinter g(kPrinter);
   for (const char* line : {"M73 P1", "M201 X100", "M203 X1", "M204 S1", "M205 J1", "M220 S100", "M221 S100"})
