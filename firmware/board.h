@@ -20,6 +20,14 @@ namespace board_defaults {
 constexpr bool kGcode = false;  // the line protocol takes G-code (docs/gcode.md)
 constexpr bool kHeater = false;  // no heater service, heater M-codes refused
 struct Heater;  // a heater's wiring (firmware/boards/m32.h), only with kHeater
+// With a heater: M303's relay autotune (about 1.9 KB of flash), and the
+// printer codes a slicer's file carries (M73 progress, M117 message, the
+// M201/M203/M204/M205 machine limits, M220 feed and M221 flow overrides:
+// firmware/services/printer_codes.h, about 2 KB). The m32 has room for one
+// of the two: the Marlin printer (m32) takes the printer codes, the grbl
+// printer (m32-grbl) the autotune (docs/boards.md).
+constexpr bool kAutotune = true;
+constexpr bool kPrinterCodes = false;
 // The odometer (firmware/engine/odometer.h, about 1 KB of flash): M114
 // counts where the motors are while they move. Without it, where the
 // queued motion ends (Marlin's logical position).

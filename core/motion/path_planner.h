@@ -77,7 +77,11 @@
 //   excitation mode, at rest); only lengths derived from steps and the
 //   junction's acceleration use it. set_limits(i, rate, accel) and
 //   set_junction_deviation(mm) change what the constructor was given (the
-//   machine's settings, at rest).
+//   machine's settings, at rest; a printer's M201/M203/M205 at any time:
+//   the blocks queued keep theirs); axis(i) is what axis i has now.
+//   PathPlanner<N, Size, true>: set_accel_cap(a) caps the acceleration
+//   along the path of the blocks added after it at a mm/s^2 (a printer's
+//   M204; INFINITY, the default: the axes' limits alone).
 //
 // Why
 //   The all-integer planner this replaces (the former lookahead.h) needed
@@ -119,7 +123,7 @@ struct PathBlock {
   float accel;                 // events/s^2
 };
 
-template <uint8_t N, uint8_t Size>
+template <uint8_t N, uint8_t Size, bool AccelCap = false>
 class PathPlanner {
   static_assert(N >= 1 && N <= 5, "PathPlanner plans 1..5 axes");
   static_assert(Size >= 2 && Size <= 32, "PathPlanner rings hold 2..32 blocks");
@@ -157,6 +161,7 @@ class PathPlanner {
     const float length = sqrtf(along ? path : other);
     s.per_mm = float(events) / length;
     limit(s.out, steps, events, rapid ? INFINITY : feed_mm_per_min / 60 * s.per_mm);
+    if (AccelCap) s.out.accel = lesser(s.out.accel, accel_cap_ * s.per_mm);
     s.two_al = 2 * kPlanAccel * (s.out.accel / s.per_mm) * length;
     const float nominal = s.out.cruise / s.per_mm, cap = lesser(nominal, nominal_);
     const float turned = turn(mm, length);
@@ -179,6 +184,10 @@ class PathPlanner {
     axes_[axis].max_accel = max_accel;
   }
   void set_junction_deviation(float mm) { deviation_ = mm; }
+  // The acceleration along the path of the blocks added from now on,
+  // mm/s^2 (INFINITY: the axes' limits alone; a printer's M204).
+  void set_accel_cap(float mm_per_s2) { accel_cap_ = mm_per_s2; }
+  const PathAxis& axis(uint8_t i) const { return axes_[i]; }
 
   // The newest block's nominal speed along its path, mm/s: its feed as the
   // axes' limits hold it.
@@ -352,6 +361,7 @@ class PathPlanner {
   float nominal_ = 0;    // the newest block's nominal speed, mm/s
   float deviation_;
   float max_event_rate_;
+  float accel_cap_ = INFINITY;  // mm/s^2
   float unit_[N] = {};   // the newest block's direction
   PathAxis axes_[N];
   Slot slots_[Size];

@@ -31,18 +31,25 @@ inline bool whole_in(int32_t v, uint8_t lo, uint8_t hi, uint8_t& out) {
 }  // namespace gcode_detail
 
 // A heater M-code line (see Heater codes); nothing in the state changes.
-template <uint8_t N, bool Arcs, bool Heater, bool MarlinDwell, bool Modes>
-GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes>::heater(const GcodeBlock& b, GcodeAction<N>& a) const {
+template <uint8_t N, bool Arcs, bool Heater, bool MarlinDwell, bool Modes, bool Printer>
+GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes, Printer>::heater(const GcodeBlock& b,
+                                                                                  GcodeAction<N>& a) const {
   const GcodeCode code = b.group(GcodeGroup::machine);
   const bool fan = code == GcodeCode::m106 || code == GcodeCode::m107;
-  if (!Heater) return fan ? GcodeError::unsupported_code : GcodeError::no_heater;
+  const bool printer_code = code >= GcodeCode::m73, seed_code = code == GcodeCode::m3 || code == GcodeCode::m5;
+  if (!Heater || ((printer_code || seed_code) && !Printer))
+    return fan || printer_code || seed_code ? GcodeError::unsupported_code : GcodeError::no_heater;
   for (uint8_t g = 0; g < kGcodeGroups; ++g)
     if (g != uint8_t(GcodeGroup::machine) && b.code[g] != GcodeCode::none) return GcodeError::heater_code_alone;
+  if (printer_code) return printer(b, a);
   GcodeHeaterCommand& h = a.heater;
-  h.code = code;
+  // The seed's M3 S<C> and M5: the hot end's control on at S, as M104;
+  // off, as M104 S0 (its extrusion is what the E words do).
+  h.code = seed_code ? GcodeCode::m104 : code;
+  h.target = 0;
   const bool m109 = code == GcodeCode::m109, m155 = code == GcodeCode::m155;
   const bool m301 = code == GcodeCode::m301, m303 = code == GcodeCode::m303;
-  const bool needs_s = m109 || m155 || code == GcodeCode::m104;
+  const bool needs_s = m109 || m155 || code == GcodeCode::m104 || code == GcodeCode::m3;
   const uint32_t s = gcode_letter_bit('S'), r = gcode_letter_bit('R');
   uint32_t takes = gcode_letter_bit('N');
   if (needs_s) takes |= m109 && !b.has('S') ? r : s;
@@ -70,13 +77,7 @@ GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes>::heater(const G
     h.count = kGcodeAutotuneCycles;
     if (b.has('C') && !gcode_detail::whole_in(b.get('C'), 3, 20, h.count)) return GcodeError::bad_cycles;
   }
-  for (uint8_t i = 0; i < N; ++i) {
-    a.coord[i] = state_.axis[i].coord;
-    a.target[i] = state_.axis[i].steps;
-  }
-  a.axes = 0;
-  a.kind = GcodeActionKind::heater;
-  return GcodeError::none;
+  return hold_position(a, GcodeActionKind::heater);
 }
 
 }  // namespace am

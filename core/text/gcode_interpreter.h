@@ -15,7 +15,9 @@
 //   GcodeInterpreter<N, A, H, D, false> serves axes without excitation
 //   modes (step/dir drivers set their microsteps in hardware): M350 is then
 //   unsupported_code, as in a Marlin built without microstep pins, and none
-//   of its checks is linked.
+//   of its checks is linked. GcodeInterpreter<N, A, H, D, M, false> (the
+//   default: as H) has no printer codes (M73 M201 M203 M204 M205 M220
+//   M221: unsupported_code) and no flow.
 //
 //   execute(block, action) applies one block. On GcodeError::none the state
 //   has moved on (modes, feed, G92 offsets, position) and `action` says what
@@ -99,6 +101,22 @@
 //   the code does not take is unused_word; a missing S is
 //   missing_temperature. The state does not change.
 //
+//   Printer codes (action printer, GcodePrinterCommand: each word of the
+//   code's slots, in the line's units). Alone on the line, as the heater's.
+//     M201 <axes>        accelerations, mm/s^2, above 0 (bad_limit)
+//     M203 <axes>        top feeds, mm/s, above 0
+//     M204 [P][T][R][S]  path accelerations, mm/s^2, above 0: print,
+//                        travel, retract; S print and travel
+//     M205 [J]           junction deviation, 0.001 .. 10 mm; X Y Z E S T B
+//                        (jerk and minimum feeds) taken, not used
+//     M73 [P][R]         progress, whole 0 .. 100 %, R whole minutes left;
+//                        Q, S taken, not used (bad_percent)
+//     M220 [S], M221 [S] feed override, flow: whole 10 .. 500 %
+//   Flow (set_flow(), M221's, the machine's business to call): every later
+//   move's E steps are its distance's times flow / 100, rounded half away
+//   from zero, and the difference goes into E's G92 offset, so the program
+//   position is what the program said and the machine position is what ran.
+//
 //   Check order (the error for a line with several faults): parser errors
 //   left to right, then no_such_axis, the F word, axis_conflict,
 //   multiple_actions, missing words, unused_word, then the action's values.
@@ -112,7 +130,8 @@
 
 namespace am {
 
-template <uint8_t N, bool Arcs = true, bool Heater = true, bool MarlinDwell = false, bool Modes = true>
+template <uint8_t N, bool Arcs = true, bool Heater = true, bool MarlinDwell = false, bool Modes = true,
+          bool Printer = Heater>
 class GcodeInterpreter {
   static_assert(N >= 1 && N <= 8, "one bit per axis in GcodeAction::axes");
 
@@ -134,6 +153,12 @@ class GcodeInterpreter {
   // line changes nothing.
   void restore(const GcodeState<N>& state) { state_ = state; }
   const GcodeAxis& axis(uint8_t i) const { return axes_[i]; }
+
+  // M221's flow, percent (a printer's): each later move's E steps are its
+  // distance's times flow / 100, rounded half away from zero; the
+  // difference goes into E's offset, so the program position stays.
+  void set_flow(uint16_t percent) { flow_ = percent; }
+  uint16_t flow() const { return flow_; }
 
   // Homing has put the axes in mask `axes` at machine positions steps[]
   // (G28): no G92 offset is left on them and their program positions follow
@@ -172,7 +197,7 @@ class GcodeInterpreter {
 
   GcodeError run(const char* line, GcodeAction<N>& action) {
     GcodeBlock block;
-    const GcodeError e = parse_gcode(line, block);
+    const GcodeError e = parse_gcode<Printer>(line, block);
     return e != GcodeError::none ? e : execute(block, action);
   }
 
@@ -181,6 +206,25 @@ class GcodeInterpreter {
  private:
   GcodeError arc(const GcodeBlock& b, const GcodeModal& m, GcodeAction<N>& a) const;
   GcodeError heater(const GcodeBlock& b, GcodeAction<N>& a) const;
+  GcodeError printer(const GcodeBlock& b, GcodeAction<N>& a) const;
+  // M221's flow on E's target `steps` from `st` (its offset into `offset`);
+  // false beyond the position range.
+  [[gnu::noinline]] bool flow(const GcodeAxisState& st, int32_t& steps, int32_t& offset) const {
+    int32_t delta, flowed;
+    return flow_ == 100 || (gcode_detail::add_checked(steps, -st.steps, delta) &&
+                            scale_round(delta, flow_, 100, flowed) && gcode_detail::add_checked(st.steps, flowed, steps) &&
+                            gcode_detail::add_checked(st.offset, flowed - delta, offset));
+  }
+  // An action that moves nothing: the positions as they are.
+  [[gnu::noinline]] GcodeError hold_position(GcodeAction<N>& a, GcodeActionKind kind) const {
+    for (uint8_t i = 0; i < N; ++i) {
+      a.coord[i] = state_.axis[i].coord;
+      a.target[i] = state_.axis[i].steps;
+    }
+    a.axes = 0;
+    a.kind = kind;
+    return GcodeError::none;
+  }
 
   // steps = length_to_steps(coord) + offset on axis i; false beyond int32.
   bool machine_steps(uint8_t i, int32_t coord, int32_t offset, int32_t& steps) const {
@@ -190,10 +234,11 @@ class GcodeInterpreter {
   const GcodeAxis* axes_;
   uint32_t board_letters_;  // gcode_letter_bit() of every axis letter
   GcodeState<N> state_;
+  uint16_t flow_ = 100;  // M221: percent of every E move's steps (a printer's)
 };
 
-template <uint8_t N, bool Arcs, bool Heater, bool MarlinDwell, bool Modes>
-GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes>::execute(const GcodeBlock& b, GcodeAction<N>& a) {
+template <uint8_t N, bool Arcs, bool Heater, bool MarlinDwell, bool Modes, bool Printer>
+GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes, Printer>::execute(const GcodeBlock& b, GcodeAction<N>& a) {
   using namespace gcode_detail;
   if (b.group(GcodeGroup::machine) >= GcodeCode::m104) return heater(b, a);
   constexpr uint32_t kArcWords =
@@ -270,6 +315,7 @@ GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes>::execute(const 
   for (uint8_t i = 0; i < N; ++i, bit = uint8_t(bit << 1), ++ax, ++st, ++coord, ++steps, ++off) {
     *coord = st->coord;
     *steps = st->steps;
+    if (Printer) *off = st->offset;
     const char letter = ax->letter;
     if (!b.has(letter)) continue;
     named |= bit;
@@ -292,6 +338,7 @@ GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes>::execute(const 
                !length_to_steps(len, ax->steps_per_m, t) || !add_checked(t, st->offset, *steps)) {
       return GcodeError::target_out_of_range;
     }
+    if (Printer && letter == 'E' && !set_position && !flow(*st, *steps, *off)) return GcodeError::target_out_of_range;
     *coord = len;
   }
 
@@ -344,13 +391,14 @@ GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes>::execute(const 
     if (!(named & bit)) continue;
     out->coord = a.coord[i];
     out->steps = a.target[i];
-    if (set_position) out->offset = offset[i];
+    if (set_position || Printer) out->offset = offset[i];
   }
   return GcodeError::none;
 }
 
 }  // namespace am
 
-// GcodeInterpreter::arc() and heater(), apart (one concern a file).
+// GcodeInterpreter::arc(), heater() and printer(), apart (one concern a file).
 #include "gcode_arc_words.h"
 #include "gcode_heater_codes.h"
+#include "gcode_printer_codes.h"

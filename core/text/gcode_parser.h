@@ -10,7 +10,9 @@
 //   as the '*' that split_checksum() found) and returns GcodeError::none with
 //   `block` filled, or the first error found from the left; on an error
 //   `block` is unspecified. It reads nothing past the NUL / `end` and writes
-//   nothing outside `block`; it keeps no state of its own.
+//   nothing outside `block`; it keeps no state of its own. parse_gcode<false>
+//   knows none of the printer's codes (M3 M5 M73 M201 M203 M204 M205 M220
+//   M221: unsupported_code), for an image that has none of them.
 //
 //   Grammar: words are a letter (either case) and a number, blanks (space,
 //   tab) allowed between words and between the letter and its number, none
@@ -95,13 +97,15 @@ namespace am {
   X(mode_not_available, "mode not available on this axis")                   \
   X(arcs_not_here, "G2/G3 arcs are not in this board's image")             \
   X(no_heater, "this board has no heater")                                   \
-  /* heater_code_alone .. bad_cycles: only a board with a heater meets them */ \
+  /* heater_code_alone .. bad_limit: only a board with a heater meets them */ \
   X(heater_code_alone, "heater code must be alone on the line")            \
   X(missing_temperature, "code needs S (M109: S or R)")                     \
   X(bad_temperature, "temperature must be 0 .. 260 C")                       \
   X(bad_interval, "M155 S must be whole seconds 0 .. 60")                    \
   X(bad_gains, "gains must be P, I 0 .. 1000, D 0 .. 10000")                \
-  X(bad_cycles, "M303 C must be 3 .. 20")
+  X(bad_cycles, "M303 C must be 3 .. 20")                                   \
+  X(bad_percent, "M73 P 0 .. 100 and R in whole numbers, M220/M221 S 10 .. 500")\
+  X(bad_limit, "M201/M203/M204 values above 0, M205 J 0.001 .. 10 mm")
 
 #define AM_GCODE_ERROR_ENUM(name, text) name,
 enum class GcodeError : uint8_t { AM_GCODE_ERRORS(AM_GCODE_ERROR_ENUM) };
@@ -123,6 +127,8 @@ enum class GcodeCode : uint8_t {
   m82, m83,             // extruder
   m17, m18, m84, m114, m350, m400, m999,  // machine
   m104, m105, m106, m107, m108, m109, m155, m301, m303, m500,  // machine: the heater's and the fan's (M500: the gains)
+  m3, m5,                                   // machine: the seed's hot end on and off (a printer's)
+  m73, m201, m203, m204, m205, m220, m221,  // machine: the printer's progress, limits, feed and flow
 };
 
 inline GcodeGroup gcode_group(GcodeCode c) {
@@ -151,12 +157,12 @@ constexpr uint32_t kGcodeAxisLetters = gcode_letter_bit('X') | gcode_letter_bit(
                                        gcode_letter_bit('B') | gcode_letter_bit('C');
 constexpr uint32_t kGcodeValueLetters = kGcodeAxisLetters | gcode_letter_bit('D') | gcode_letter_bit('F') |
                                         gcode_letter_bit('I') | gcode_letter_bit('J') | gcode_letter_bit('K') |
-                                        gcode_letter_bit('N') | gcode_letter_bit('P') | gcode_letter_bit('R') |
-                                        gcode_letter_bit('S');
+                                        gcode_letter_bit('N') | gcode_letter_bit('P') | gcode_letter_bit('Q') |
+                                        gcode_letter_bit('R') | gcode_letter_bit('S') | gcode_letter_bit('T');
 
 // A value letter's slot in GcodeBlock::value: how many value letters come
 // before it (a constant where the letter is; the block is on the stack of
-// every line, so it holds the 15 value letters, not all 26).
+// every line, so it holds the 17 value letters, not all 26).
 constexpr uint8_t gcode_value_slot(char upper_letter) {
   return uint8_t(__builtin_popcountl(kGcodeValueLetters & (gcode_letter_bit(upper_letter) - 1)));
 }
@@ -182,7 +188,11 @@ inline bool blank(char c) { return c == ' ' || c == '\t'; }
 // The code of G<n> / M<n>, none if unsupported. Comparisons,
 // not a switch: a switch over results becomes a lookup table, which avr-gcc
 // puts in RAM.
-inline GcodeCode code_of(char letter, int32_t number) {
+// Printer: the printer's codes (M3 M5 M73 M201 M203 M204 M205 M220 M221)
+// too; a parser without them reads them as unsupported (and links none of
+// their compares).
+template <bool Printer>
+GcodeCode code_of(char letter, int32_t number) {
   if (number < 0 || number > 999) return GcodeCode::none;
   const uint16_t n = uint16_t(number);  // 16-bit compares: half the code of 32-bit ones on the AVR
   if (letter == 'G') {
@@ -210,12 +220,18 @@ inline GcodeCode code_of(char letter, int32_t number) {
   if (n == 301) return GcodeCode::m301;
   if (n == 303) return GcodeCode::m303;
   if (n == 500) return GcodeCode::m500;
+  if (!Printer) return GcodeCode::none;
+  if (n == 3 || n == 5) return GcodeCode(uint8_t(GcodeCode::m3) + (n == 5));
+  if (n == 73) return GcodeCode::m73;
+  if (n >= 201 && n <= 205 && n != 202) return GcodeCode(uint8_t(GcodeCode::m201) + (n - 201 - (n > 202)));
+  if (n == 220 || n == 221) return GcodeCode(uint8_t(GcodeCode::m220) + (n - 220));
   return GcodeCode::none;
 }
 
 }  // namespace gcode_detail
 
-inline GcodeError parse_gcode(const char* p, GcodeBlock& b, const char* end = nullptr) {
+template <bool Printer = true>
+GcodeError parse_gcode(const char* p, GcodeBlock& b, const char* end = nullptr) {
   using namespace gcode_detail;
   b.words = 0;
   for (uint8_t g = 0; g < kGcodeGroups; ++g) b.code[g] = GcodeCode::none;
@@ -259,7 +275,7 @@ inline GcodeError parse_gcode(const char* p, GcodeBlock& b, const char* end = nu
     if (line_number && (!first_word || had_point || v < 0)) return GcodeError::bad_line_number;
     first_word = false;
     if (is_code) {
-      const GcodeCode code = had_point || v < 0 ? GcodeCode::none : code_of(letter, v);
+      const GcodeCode code = had_point || v < 0 ? GcodeCode::none : code_of<Printer>(letter, v);
       if (code == GcodeCode::none) return GcodeError::unsupported_code;
       GcodeCode& slot = b.code[uint8_t(gcode_group(code))];
       if (slot != GcodeCode::none) return GcodeError::modal_group_conflict;

@@ -54,7 +54,7 @@ struct GcodeState {
 
 enum class GcodeActionKind : uint8_t {
   none, move, arc, dwell, set_position, report_position, enable, release, wait, set_mode, program_end, heater, home,
-  unlock,
+  unlock, printer,
 };
 
 // The highest target a heater code takes: Marlin's HEATER_0_MAXTEMP (275 C,
@@ -73,6 +73,18 @@ struct GcodeHeaterCommand {
   uint32_t gains[3];    // M301: P I D, thousandths
 };
 
+// What a printer M-code asks (GcodeActionKind::printer, see Printer codes):
+// the words of the code's slots, bit k of `given` for slot k. Slots:
+// M201/M203 the board's axes in order; M204 P T R S; M205 J; M73 P R;
+// M220 S; M221 S. Lengths (M201 M203 M204 mm/s^2 or mm/s, M205 J mm) in
+// 1/10000 mm, percent and minutes whole, T as given (0).
+template <uint8_t N>
+struct GcodePrinterCommand {
+  GcodeCode code;  // m73 m201 m203 m204 m205 m220 m221
+  uint8_t given;
+  int32_t value[N > 4 ? N : 4];
+};
+
 template <uint8_t N>
 struct GcodeAction {
   GcodeActionKind kind;
@@ -88,7 +100,10 @@ struct GcodeAction {
   int32_t radius;            // arc: 1/10000 mm
   uint32_t dwell_ms;         // dwell
   uint8_t mode[N];           // set_mode: M350 mode per named axis
-  GcodeHeaterCommand heater;  // heater
+  union {
+    GcodeHeaterCommand heater;        // heater
+    GcodePrinterCommand<N> printer;  // printer
+  };
 };
 
 namespace gcode_detail {

@@ -91,8 +91,8 @@ struct AxisSet<> {
   static void commit(uint8_t, uint8_t) {}
   static void pulse_end(uint8_t, uint8_t) {}
   static int8_t index_of(char, uint8_t = 0) { return -1; }
-  static char name_at(uint8_t) { return '?'; }
-  static uint32_t max_rate_at(uint8_t) { return 0; }
+  static constexpr char name_at(uint8_t) { return '?'; }
+  static constexpr uint32_t max_rate_at(uint8_t) { return 0; }
   static uint32_t steps_per_m_at(uint8_t) { return 0; }
   static int32_t units_for(uint8_t, int32_t, bool) { return 0; }
   static uint8_t units_per_full_step_at(uint8_t) { return 1; }
@@ -146,8 +146,8 @@ struct AxisSet<First, Rest...> {
   static int8_t index_of(char name, uint8_t index = 0) {
     return First::name == name ? int8_t(index) : Tail::index_of(name, uint8_t(index + 1));
   }
-  static char name_at(uint8_t index) { return index == 0 ? First::name : Tail::name_at(uint8_t(index - 1)); }
-  static uint32_t max_rate_at(uint8_t index) {
+  static constexpr char name_at(uint8_t index) { return index == 0 ? First::name : Tail::name_at(uint8_t(index - 1)); }
+  static constexpr uint32_t max_rate_at(uint8_t index) {
     return index == 0 ? OwnMaxRate<First>::value : Tail::max_rate_at(uint8_t(index - 1));
   }
   static uint32_t steps_per_m_at(uint8_t index) {

@@ -106,7 +106,7 @@ struct Each<Axes> {
   static uint8_t latches(uint8_t) { return 0; }
   static void init(bool) {}
   static uint8_t watch(uint8_t) { return 0; }
-  static uint8_t axis_at(uint8_t) { return 0; }
+  static constexpr uint8_t axis_at(uint8_t) { return 0; }
   static bool read_at(uint8_t) { return false; }
   static constexpr uint8_t pin_of(uint8_t) { return am::kNoPin; }
 };
@@ -129,7 +129,7 @@ struct Each<Axes, First, Rest...> {
   }
   using Tail = Each<Axes, Rest...>;
   static uint8_t watch(uint8_t toward) { return uint8_t(((toward & bit) ? First::Pin::mask : 0) | Tail::watch(toward)); }
-  static uint8_t axis_at(uint8_t k) { return k == 0 ? uint8_t(__builtin_ctz(bit)) : Tail::axis_at(uint8_t(k - 1)); }
+  static constexpr uint8_t axis_at(uint8_t k) { return k == 0 ? uint8_t(__builtin_ctz(bit)) : Tail::axis_at(uint8_t(k - 1)); }
   static bool read_at(uint8_t k) { return k == 0 ? First::Pin::read() : Tail::read_at(uint8_t(k - 1)); }
   static constexpr uint8_t pin_of(uint8_t axis_bit) {
     return axis_bit == bit ? am::pin_code(First::Pin::port, First::Pin::bit) : Tail::pin_of(axis_bit);
@@ -166,6 +166,6 @@ struct EndstopSet {
     return (level & pins) != 0 || (hal::ext_int::latched() & latches) != 0;
   }
   static bool closed_at(uint8_t k) { return Each::read_at(k) == ClosedHigh; }
-  static uint8_t axis_at(uint8_t k) { return Each::axis_at(k); }
+  static constexpr uint8_t axis_at(uint8_t k) { return Each::axis_at(k); }
   static constexpr uint8_t pin_of(uint8_t axis) { return Each::pin_of(uint8_t(1u << axis)); }
 };

@@ -12,5 +12,10 @@ namespace board {
 // firmware/apps/cnc/app.cmake) and take the heater M-codes.
 constexpr bool kHeater = true;
 constexpr Protocol kProtocol = Protocol::marlin;  // docs/protocol.md
+// What a slicer's file needs instead of M303 (firmware/board.h): tune the
+// hot end with the m32-grbl image (M303, then M500), whose gains this image
+// reads from the EEPROM (docs/heater.md).
+constexpr bool kPrinterCodes = true;
+constexpr bool kAutotune = false;
 
 }  // namespace board

@@ -14,7 +14,7 @@ namespace {
 
 constexpr uint8_t kAxes = board::Axes::count;
 using Block = am::PathBlock<kAxes>;
-using Plan = am::PathPlanner<kAxes, board::kPathBlocks>;
+using Plan = am::PathPlanner<kAxes, board::kPathBlocks, board::kPrinterCodes>;
 
 // A G-code block is taken once the engine's queue holds this few segments:
 // each is about a millisecond of motion or more except near rest
@@ -61,6 +61,17 @@ Plan& plan() {
 }
 
 bool ring_empty() { return !board::kGcode || plan().count() == 0; }
+
+// A printer's M204 caps (set_path_accel()), by PathAccel, and which a move
+// takes: the extruder's bit with others, alone, or not at all.
+float path_accel[3] = {INFINITY, INFINITY, INFINITY};
+constexpr uint8_t extruder_bit(uint8_t i = 0) {
+  return i == kAxes ? 0 : board::Axes::name_at(i) == 'E' ? uint8_t(1u << i) : extruder_bit(uint8_t(i + 1));
+}
+PathAccel accel_kind(const planner::Move& move) {
+  const uint8_t mask = planner::mask_of(move.steps);
+  return !(mask & extruder_bit()) ? PathAccel::travel : mask == extruder_bit() ? PathAccel::retract : PathAccel::print;
+}
 
 am::TrapezoidRuns runs;
 bool generating;       // the running block has runs left to queue
@@ -181,6 +192,7 @@ Added add(const planner::Move& move, const float (&delta_mm)[kAxes], float feed_
   if (!room()) return Added::full;
   const bool at_rest = idle() && !engine::busy();
   if (at_rest) set_steps_per_mm();  // modes change only at rest
+  if (board::kPrinterCodes) plan().set_accel_cap(path_accel[uint8_t(accel_kind(move))]);
   switch (plan().add(move.steps, delta_mm, feed_mm_per_min, rapid)) {
     case Plan::Status::bad_feed: return Added::bad_feed;
     case Plan::Status::full: return Added::full;
@@ -204,6 +216,13 @@ void set_axis(uint8_t axis, uint32_t steps_per_m, uint32_t max_rate, uint32_t ma
 }
 
 void set_junction_um(uint32_t um) { plan().set_junction_deviation(float(um) / 1000.0f); }
+
+void set_axis_limit(uint8_t axis, bool accel, float value) {
+  const am::PathAxis& a = plan().axis(axis);
+  plan().set_limits(axis, accel ? a.max_rate : value, accel ? value : a.max_accel);
+}
+
+void set_path_accel(PathAccel which, float mm_per_s2) { path_accel[uint8_t(which)] = mm_per_s2; }
 
 float held_feed() { return plan().newest_nominal() * 60; }
 

@@ -63,6 +63,14 @@ Added add(const planner::Move& move, const float (&delta_mm)[board::Axes::count]
 // steps/s, the acceleration in steps/s^2) and the junction deviation in um.
 void set_axis(uint8_t axis, uint32_t steps_per_m, uint32_t max_rate, uint32_t max_accel);
 void set_junction_um(uint32_t um);
+// A printer's machine limits (firmware/services/printer_codes.h), at any
+// time: the blocks queued so far keep theirs. An axis's top rate in steps/s
+// (M203) or, `accel`, its acceleration in steps/s^2 (M201); the acceleration along the
+// path in mm/s^2 of the blocks that extrude while they move (M204 P), that
+// do not extrude (T) and that only move the extruder (R).
+enum class PathAccel : uint8_t { print, travel, retract };
+void set_axis_limit(uint8_t axis, bool accel, float value);
+void set_path_accel(PathAccel which, float mm_per_s2);
 // Whether add() would queue a block now (not full).
 bool room();
 // The feed the last queued block runs at, mm/min: its F as the axes' limits

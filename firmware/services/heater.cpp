@@ -99,7 +99,7 @@ bool temp_ok;  // the TEMP_OK output (safety.h: its hysteresis)
 
 void sample_period() {
   convert();
-  const uint8_t wanted = tuning_ ? control.tune.update(reading_) : control.pid.update(reading_, target_);
+  const uint8_t wanted = board::kAutotune && tuning_ ? control.tune.update(reading_) : control.pid.update(reading_, target_);
   duty_ = safety.check(now_ms, reading_, target(), wanted);
   now_ms += kPeriodMs;
   Hw::Pwm::set(duty_);

@@ -56,7 +56,7 @@ bool wait_turn(const am::GcodeHeaterCommand& c) {
     waiting = true;
     next_status = clock::now() + clock::ms(1000);
   }
-  const bool m303 = c.code == am::GcodeCode::m303;
+  const bool m303 = board::kAutotune && c.code == am::GcodeCode::m303;
   const char* failed = nullptr;
   bool apply = false;
   if (fault() != am::HeaterFault::none) {
@@ -113,7 +113,7 @@ bool run(const am::GcodeHeaterCommand& c) {
       if (!waiting && !set_target(c.target)) return refuse_halted();
       return wait_turn(c);
     case am::GcodeCode::m303:
-      if (!waiting && !autotune(c.target, c.count)) return refuse_halted();
+      if (!board::kAutotune || (!waiting && !autotune(c.target, c.count))) return refuse_halted();
       return wait_turn(c);
     case am::GcodeCode::m105:  // Marlin: `ok T:...`; grbl: the status, then `ok`
       if (reply::kMarlin) {

@@ -18,10 +18,25 @@ using Endstops = board::Endstops;
 const char kNotFound[] PROGMEM = "homing: endstop not found";
 
 // The move the axis has just made, which the next step checks.
+// An axis's top rate alone (planner::clamp()'s rule for a single axis).
+constexpr uint32_t rate_cap(uint8_t axis) {
+  return board::Axes::max_rate_at(axis) ? board::Axes::max_rate_at(axis) : board::kMaxStepRate;
+}
 enum class Phase : uint8_t { next_axis, seek, back_off, locate, pull_off };
 Phase phase;
 uint8_t running;  // the mask being homed; 0: not homing
 uint8_t k;        // the switch being homed
+
+// The board's own homing rates within its axes' (checked here, when the
+// image compiles); settings (board::kSettings) are held within them when
+// each move starts.
+constexpr bool board_rates_fit(uint8_t k = 0) {
+  return k == Endstops::count ||
+         (board::kHomingSettings.axis[k].seek_rate <= rate_cap(Endstops::axis_at(k)) &&
+          board::kHomingSettings.axis[k].locate_rate <= rate_cap(Endstops::axis_at(k)) && board_rates_fit(uint8_t(k + 1)));
+}
+static_assert(board::kSettings || board_rates_fit(), "a homing rate beyond its axis's top rate");
+static_assert(board::kDefaultAccel <= board::kMaxAccel, "homing accelerates at the board's default");
 
 // A move of switch k's axis, `steps` toward its switch (< 0: away).
 void go(int32_t steps, uint16_t rate) {
@@ -29,7 +44,7 @@ void go(int32_t steps, uint16_t rate) {
   planner::Move m{};
   m.steps[axis] = (Endstops::max_end & (1u << axis)) ? steps : -steps;
   planner::Ramp ramp{rate, board::kDefaultAccel};
-  planner::clamp(m, ramp);  // settings within the board's limits
+  if (board::kSettings) planner::clamp(m, ramp);
   path::add_direct(m, ramp);
 }
 

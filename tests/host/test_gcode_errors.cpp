@@ -87,7 +87,7 @@ TEST(GcodeErrors, BadComment) {
   check(GcodeError::bad_comment, "G1 X15 (to fifteen");
   check(GcodeError::bad_comment, "G1 (a (b) c) X15");
 }
-TEST(GcodeErrors, UnsupportedWord) { check(GcodeError::unsupported_word, "G1 X15 Q1000"); }
+TEST(GcodeErrors, UnsupportedWord) { check(GcodeError::unsupported_word, "G1 X15 L1000"); }
 TEST(GcodeErrors, BadNumber) {
   check(GcodeError::bad_number, "G1 X1.2.3");
   check(GcodeError::bad_number, "G1 X");
@@ -104,7 +104,7 @@ TEST(GcodeErrors, BadLineNumber) {
 }
 TEST(GcodeErrors, UnsupportedCode) {
   check(GcodeError::unsupported_code, "G30");
-  check(GcodeError::unsupported_code, "M220 S200");
+  check(GcodeError::unsupported_code, "M202 X100");
 }
 TEST(GcodeErrors, ModalGroupConflict) {
   check(GcodeError::modal_group_conflict, "G0 G1 X15");

@@ -134,10 +134,16 @@ TEST(GcodeParser, CodesAndTheirGroups) {
 }
 
 TEST(GcodeParser, UnsupportedCodes) {
-  for (const char* line : {"G30", "G5", "G38", "G80", "G93", "G95", "G1.0", "G1.5", "G92.1", "G-1", "M0", "M3",
-                           "M110", "M220", "M221", "M998", "M350.5", "G214748"})
+  for (const char* line : {"G30", "G5", "G38", "G80", "G93", "G95", "G1.0", "G1.5", "G92.1", "G-1", "M0", "M4",
+                           "M110", "M117", "M202", "M222", "M998", "M350.5", "G214748"})
     EXPECT_EQ(parse(line), GcodeError::unsupported_code) << line;
   EXPECT_EQ(parse("G9999999999"), GcodeError::out_of_range);
+  // A parser without the printer's codes (an image without them).
+  for (const char* line : {"M3 S200", "M5", "M73 P1", "M201 X1", "M203 X1", "M204 S1", "M205 J1", "M220", "M221"}) {
+    GcodeBlock b;
+    EXPECT_EQ(am::parse_gcode<false>(line, b), GcodeError::unsupported_code) << line;
+    EXPECT_EQ(am::parse_gcode<true>(line, b), GcodeError::none) << line;
+  }
 }
 
 TEST(GcodeParser, ModalGroupConflicts) {
@@ -150,7 +156,7 @@ TEST(GcodeParser, WordErrors) {
   EXPECT_EQ(parse("G1 X1 X2"), GcodeError::repeated_word);
   EXPECT_EQ(parse("G1 x1 X2"), GcodeError::repeated_word);
   EXPECT_EQ(parse("G1 F100 X1 F200"), GcodeError::repeated_word);
-  for (const char* line : {"G1 X1 Q100", "T1", "G1 Q1", "L2", "H1", "O100", "G1 V1", "G1 W1"})
+  for (const char* line : {"G1 X1 L100", "L2", "H1", "O100", "G1 V1", "G1 W1"})
     EXPECT_EQ(parse(line), GcodeError::unsupported_word) << line;
   for (const char* line : {"G1 X10 20", "#1=5", "$H", "G1 X1*71", "G1 X1 )", "G1 X1 /", "G1 ,X1", "1"})
     EXPECT_EQ(parse(line), GcodeError::bad_character) << line;
@@ -162,7 +168,7 @@ TEST(GcodeParser, WordErrors) {
 
 TEST(GcodeParser, FirstErrorFromTheLeftWins) {
   EXPECT_EQ(parse("G1 X1 X2 T1"), GcodeError::repeated_word);
-  EXPECT_EQ(parse("G1 T1 X1 X2"), GcodeError::unsupported_word);
+  EXPECT_EQ(parse("G1 L1 X1 X2"), GcodeError::unsupported_word);
   EXPECT_EQ(parse("G30 G0 G1"), GcodeError::unsupported_code);
   EXPECT_EQ(parse("G0 G1 G30"), GcodeError::modal_group_conflict);
 }

@@ -111,7 +111,7 @@ TEST(Gcode, RefusedLinesAreAnsweredOnceAndChangeNothing) {
     int grbl;
   };
   const std::vector<Bad> bad = {
-      {"G1 X1 Q3", "unsupported word letter", 20},
+      {"G1 X1 L3", "unsupported word letter", 20},
       {"G1 X1 X2", "word given twice", 25},
       {"G0 G1 X1", "two codes of one modal group", 21},
       {"G1 X1.2.3", "bad number", 2},

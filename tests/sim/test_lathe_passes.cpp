@@ -179,7 +179,7 @@ TEST(LathePasses, BadLinesAreRefusedAndNothingMoves) {
       {"G33 Z-10 K1 D1.5", "error: D must be 1..255"},
       {"G33 Z-10 K200", "error: 16 or more steps per count"},
       {"G33 Z-10 K1 F100", "error: word not used here"},
-      {"G33 Z-10 K1 Q2", "error: unsupported word letter"},
+      {"G33 Z-10 K1 L2", "error: unsupported word letter"},
       {"G33 Z-10 K1 K2", "error: word given twice"},
       {"G33 Z-10 Kx", "error: bad number"},
       {"G1 Z5", "error: not a lathe command"},

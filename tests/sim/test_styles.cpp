@@ -93,7 +93,7 @@ TEST(Styles, MarlinReportsItselfWaitsForMotionAndKeepsTheHostWaiting) {
   ASSERT_EQ(longest.size(), 96u);
   const std::vector<Expect> script = {
       {"M115", "ok"},
-      {"M220 S100", "ok"},  // Marlin's answer to a code it does not have
+      {"M140 S60", "ok"},  // Marlin's answer to a code it does not have (no bed heater here)
       {"M106 S128", "ok"},  // the fan: no output on this board, a no-op (no echo)
       {longest, "ok"},
       {longest + ".", "Error:line too long (max 96 characters)"},
@@ -112,7 +112,7 @@ TEST(Styles, MarlinReportsItselfWaitsForMotionAndKeepsTheHostWaiting) {
                                             " SOURCE_CODE_URL:local PROTOCOL_VERSION:1.0 MACHINE_TYPE:m32 "
                                             "EXTRUDER_COUNT:1",
                                             "Cap:AUTOREPORT_TEMP:1", "Cap:EEPROM:0", "Cap:EMERGENCY_PARSER:0",
-                                            "echo:Unknown command: \"M220 S100\""}));
+                                            "echo:Unknown command: \"M140 S60\""}));
   const auto& r = m->serial().responses();
   const auto& x = m->axis('X')->step_cycles;
   ASSERT_EQ(x.size(), 5001u);  // 1 + 5000

@@ -11,8 +11,9 @@
 #include "../../engine/path.h"
 #include "../../engine/planner.h"
 #include "../../services/heater_codes.h"
-#include "pending.h"
 #include "../../services/homing.h"
+#include "../../services/printer_codes.h"
+#include "pending.h"
 #include "reply.h"
 
 namespace gcode {
@@ -71,24 +72,27 @@ constexpr bool kModes = AnyModes<board::Axes>::value();
 
 // A Marlin host's G4 P is milliseconds (G4 S seconds); a board whose axes
 // have no excitation modes refuses M350 whole.
-using Interpreter = am::GcodeInterpreter<kAxes, board::kArcs, board::kHeater, reply::kMarlin, kModes>;
+using Interpreter =
+    am::GcodeInterpreter<kAxes, board::kArcs, board::kHeater, reply::kMarlin, kModes, board::kHeater && board::kPrinterCodes>;
 Interpreter& interpreter() {
   static Interpreter instance(AxisTable<board::Axes>::value);
   return instance;
 }
 // The error texts and their pointers in flash (docs/gcode.md: a switch over
 // PSTR()s would become a pointer table in RAM). A board without a heater
-// can only meet no_heater of the heater's errors, one without excitation
-// modes none of M350's (unless it has the direct MODE command, which answers
-// with them): the others point at an empty text, and the linker drops
-// theirs.
+// can only meet no_heater of the heater's errors (one with a heater never
+// meets it), one without arcs none of the arc's geometry errors, one
+// without excitation modes none of M350's (unless it has the direct MODE
+// command, which answers with them): the others point at an empty text,
+// and the linker drops theirs.
 #define AM_ERROR_TEXT(name, text) const char name##_text[] PROGMEM = text;
 AM_GCODE_ERRORS(AM_ERROR_TEXT)
 #undef AM_ERROR_TEXT
 const char kNoText[] PROGMEM = "";
 constexpr bool reachable(am::GcodeError e) {
   using E = am::GcodeError;
-  return (board::kHeater || e < E::heater_code_alone || e > E::bad_cycles) &&
+  return (board::kHeater || e < E::heater_code_alone || e > E::bad_limit) && !(board::kHeater && e == E::no_heater) &&
+         (board::kArcs || e < E::arc_zero_radius || e > E::arc_full_circle_r) &&
          (kModes || board::kCommands || (e != E::bad_mode && e != E::axis_has_no_modes && e != E::mode_not_available));
 }
 #define AM_ERROR_POINTER(name, text) reachable(am::GcodeError::name) ? name##_text : kNoText,
@@ -135,6 +139,11 @@ const uint8_t kGrblCode[] PROGMEM = {AM_GCODE_ERRORS(AM_GRBL_CODE)};
 constexpr am::GcodeAction<kAxes>& action = pending::line.action;
 bool pending;
 int32_t coord_before[kAxes];  // program position before the pending line
+uint16_t feed_percent_ = 100;  // M220 (a printer's)
+float feed_scale = 1e-4f;      // of action.feed (1/10000 mm/min) to mm/min, M220's percent applied
+
+// A feed move's F in mm/min.
+float feed_of_action() { return float(action.feed) * (board::kPrinterCodes ? feed_scale : 1e-4f); }
 
 // G2/G3: chords in position units, which are steps on the axes of a board
 // with arcs, so every chord end is a step position within half a step of
@@ -185,7 +194,7 @@ planner::Move move_to(const int32_t (&target)[kAxes]) {
 // A feed beyond what the axes can do runs at what they can: said before the
 // block moves.
 void warn_if_held() {
-  const float asked = float(action.feed) * 1e-4f, held = path::held_feed();
+  const float asked = feed_of_action(), held = path::held_feed();
   if (held < asked * 0.9999f) {
     char buf[14];
     am::format_fixed(buf, int32_t(held + 0.5f), 0);
@@ -205,7 +214,7 @@ bool move() {
   float delta_mm[kAxes];
   for (uint8_t i = 0; i < kAxes; ++i) delta_mm[i] = float(action.coord[i] - coord_before[i]) * 1e-4f;
   // bad_feed cannot come back: the interpreter refuses F <= 0 on a G1.
-  if (path::add(m, delta_mm, float(action.feed) * 1e-4f, action.rapid) == path::Added::full) return false;
+  if (path::add(m, delta_mm, feed_of_action(), action.rapid) == path::Added::full) return false;
   if (!action.rapid) warn_if_held();
   return true;
 }
@@ -228,7 +237,7 @@ bool arc_chords() {
   for (uint8_t i = 0; i < kAxes; ++i)
     delta_mm[i] = float(board::Axes::units_for(i, m.steps[i], false)) * 1000.0f /
                   float(AxisTable<board::Axes>::value[i].steps_per_m);
-  path::add(m, delta_mm, float(action.feed) * 1e-4f, false);
+  path::add(m, delta_mm, feed_of_action(), false);
   if (!arc_started) warn_if_held();
   arc_started = true;
   return false;
@@ -256,6 +265,22 @@ bool home() {
   return true;
 }
 
+// M117 <text> (a printer's): the text up to a ';' comment, as an info line
+// (`echo:<text>`, grbl `[MSG:<text>]`), and ok; true when the line is one.
+// Its own reading: the parser would take the text for words.
+bool message(const char* line) {
+  while (*line == ' ' || *line == '\t') ++line;
+  if ((*line & ~0x20) != 'M' || line[1] != '1' || line[2] != '1' || line[3] != '7') return false;
+  line += 4;
+  if (*line != ' ' && *line != '\t' && *line != '\0' && *line != ';') return false;
+  if (*line == ' ' || *line == '\t') ++line;
+  reply::info_begin();
+  while (*line && *line != ';') hal::uart::write(uint8_t(*line++));
+  reply::info_end();
+  reply::ok();
+  return true;
+}
+
 bool moves(am::GcodeActionKind kind) {
   return kind == am::GcodeActionKind::move || kind == am::GcodeActionKind::arc || kind == am::GcodeActionKind::home;
 }
@@ -279,11 +304,16 @@ void refuse(am::GcodeError e) {
 }
 
 bool accept(const char* line) {
+  if (board::kPrinterCodes && message(line)) return false;
   const am::GcodeState<kAxes> before = interpreter().state();
   for (uint8_t i = 0; i < kAxes; ++i) {
     coord_before[i] = before.axis[i].coord;
   }
-  const am::GcodeError e = interpreter().run(line, action);
+  am::GcodeError e = interpreter().run(line, action);
+  // M303 where the board leaves the autotune out (board::kAutotune).
+  if (!board::kAutotune && e == am::GcodeError::none && action.kind == am::GcodeActionKind::heater &&
+      action.heater.code == am::GcodeCode::m303)
+    e = am::GcodeError::unsupported_code;
   if (e != am::GcodeError::none) {
     if (reply::kMarlin && e == am::GcodeError::unsupported_code)
       reply::unknown_command(line);
@@ -353,6 +383,11 @@ void write_state() {
 bool execute() {
   if (!pending) return true;
   if (action.kind == am::GcodeActionKind::heater) return heater_code();
+  if (board::kPrinterCodes && action.kind == am::GcodeActionKind::printer) {
+    pending = false;
+    printer_codes::run(action.printer);
+    return true;
+  }
   // An alarm raised since the line was accepted (a hard limit under the
   // motion before it): it does not move.
   if (limits::alarm() && moves(action.kind)) {
@@ -417,5 +452,13 @@ void rescale() { interpreter().rescale(); }
 uint32_t steps_per_m(uint8_t axis) { return AxisTable<board::Axes>::value[axis].steps_per_m; }
 
 uint32_t feed_mm_per_min() { return uint32_t(interpreter().state().modal.feed) / 10000u; }
+
+void set_feed_percent(uint16_t percent) {
+  feed_percent_ = percent;
+  feed_scale = float(percent) * 1e-6f;
+}
+uint16_t feed_percent() { return feed_percent_; }
+void set_flow(uint16_t percent) { interpreter().set_flow(percent); }
+uint16_t flow() { return interpreter().flow(); }
 
 }  // namespace gcode

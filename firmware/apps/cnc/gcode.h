@@ -35,6 +35,13 @@ void rescale();
 uint32_t steps_per_m(uint8_t axis);
 // The modal feed, whole mm/min (0 before the first F).
 uint32_t feed_mm_per_min();
+// A printer's overrides (firmware/services/printer_codes.h), percent: of
+// every later feed move's F (M220) and of every later move's E steps
+// (M221, the interpreter's flow).
+void set_feed_percent(uint16_t percent);
+uint16_t feed_percent();
+void set_flow(uint16_t percent);
+uint16_t flow();
 // Prints the refusal `e` (its text and grbl number): the direct controls
 // share the texts they have in common with G-code.
 void refuse(am::GcodeError e);

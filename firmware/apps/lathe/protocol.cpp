@@ -203,7 +203,7 @@ void on_line(const char* p) {
   const bool is_encoder = am::detail::keyword(p, "ENCODER");
   const bool is_thread = !is_encoder && g33(p);
   am::GcodeBlock b;
-  const am::GcodeError e = am::parse_gcode(p, b);
+  const am::GcodeError e = am::parse_gcode<false>(p, b);
   if (e != am::GcodeError::none) return error(parse_error_text(e));
   for (uint8_t g = 0; g < am::kGcodeGroups; ++g) {
     const am::GcodeCode c = b.code[g];
