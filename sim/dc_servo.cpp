@@ -17,7 +17,7 @@ DcServo::DcServo(Machine& m, const ServoParams& p) : m_(m), p_(p) {
   pin_enc_ = b.servo_pins[3];
   if (pin_en_ == am::kNoPin || pin_in1_ == am::kNoPin || pin_in2_ == am::kNoPin || pin_enc_ == am::kNoPin)
     throw std::runtime_error(std::string("board ") + b.board + " has no DC-servo leadscrew");
-  if (p.tick_cycles == 0 || p.log_every == 0 || !(p.pole > 0)) throw std::runtime_error("servo: bad parameters");
+  if (p.tick_cycles == 0 || p.log_every == 0 || !(p.pole > 0) || p.coast_pole < 0) throw std::runtime_error("servo: bad parameters");
   x_ = p.start_position + 0.25;
   at_ = m.cycles();
   enc_level_ = std::floor(2 * x_) != 2 * std::floor(x_);
@@ -43,10 +43,11 @@ double DcServo::drive() const {
 void DcServo::advance(uint64_t cycle) {
   if (cycle <= at_) return;
   const double dt = double(cycle - at_) / m_.f_cpu();
-  if (en_) high_cycles_ += cycle - at_;
+  if (en_) (in1_ != in2_ ? driven_cycles_ : brake_cycles_) += cycle - at_;
   const double target = p_.gain * p_.full_scale * drive();  // pulses/s
-  const double decay = std::exp(-p_.pole * dt);
-  x_ += target * dt + (w_ - target) * (1 - decay) / p_.pole;
+  const double pole = en_ || !(p_.coast_pole > 0) ? p_.pole : p_.coast_pole;
+  const double decay = std::exp(-pole * dt);
+  x_ += target * dt + (w_ - target) * (1 - decay) / pole;
   w_ = target + (w_ - target) * decay;
   at_ = cycle;
   const bool level = std::floor(2 * x_) != 2 * std::floor(x_);  // frac(x) >= 0.5

@@ -17,12 +17,16 @@
 //   = 2134.6 pulses/s.)
 //   The model does not average the PWM: the bridge's output is the
 //   instantaneous input, +full scale while ENABLE is high with IN1 high and
-//   IN2 low, -full scale with IN2 high and IN1 low, 0 otherwise (ENABLE low:
-//   free running; IN1 = IN2: the brake code, which the identified plant has
-//   no separate time constant for, so it is free running too), and
+//   IN2 low, -full scale with IN2 high and IN1 low, 0 otherwise (ENABLE high
+//   with IN1 = IN2: the brake, the motor's terminals shorted; ENABLE low:
+//   free running), and
 //       tau dw/dt = gain x full_scale x v(t) - w,   dx/dt = w
 //   is integrated exactly between the input's changes (piecewise constant
-//   input: exponentials). The 15.6 kHz PWM (64 us) is well inside the
+//   input: exponentials). tau is 1 / pole while ENABLE is high (driven or
+//   braking: the identified plant), 1 / coast_pole while it is low (free
+//   running: the seed identified no figure for it, so coast_pole defaults
+//   to pole; a smaller one is a motor that runs on longer unbraked, and
+//   slows the PWM's low phases too). The 15.6 kHz PWM (64 us) is well inside the
 //   plant's 13.46 ms, so its duty is what moves the motor, and a spike or a
 //   stray period on ENABLE moves it too.
 //   Encoder: one channel, low for the first half of each pulse and high for
@@ -44,6 +48,7 @@ namespace sim {
 struct ServoParams {
   double gain = 2.0866;       // pulses/s per duty count
   double pole = 74.29;        // rad/s: 1 / the time constant
+  double coast_pole = 0;      // rad/s while ENABLE is low (0: pole)
   double full_scale = 1023;   // duty counts at 100 % (the 10-bit PWM's TOP)
   double start_position = 0;  // pulses (0: mid-way between edges, + 0.25)
   uint32_t tick_cycles = 64;
@@ -70,8 +75,10 @@ class DcServo {
   const std::vector<uint64_t>& falling_edges() const { return falls_; }
   // The position at a cycle from the log (linear between entries).
   double position_at(uint64_t cycle) const;
-  // Cycles ENABLE was high, since the start.
-  uint64_t enable_high_cycles() const { return high_cycles_; }
+  // Cycles the bridge drove the motor (ENABLE high, IN1 != IN2) and braked
+  // it (ENABLE high, IN1 = IN2), since the start.
+  uint64_t driven_cycles() const { return driven_cycles_; }
+  uint64_t brake_cycles() const { return brake_cycles_; }
 
  private:
   static uint64_t on_tick(avr_t* avr, uint64_t when, void* param);
@@ -85,7 +92,7 @@ class DcServo {
   uint64_t at_ = 0;  // the model's time, cycles
   double x_, w_ = 0;
   uint32_t ticks_ = 0;
-  uint64_t high_cycles_ = 0;
+  uint64_t driven_cycles_ = 0, brake_cycles_ = 0;
   std::vector<ServoSample> log_;
   std::vector<uint64_t> falls_;
 };

@@ -21,18 +21,24 @@
 //              the settings
 //   entry      the prompt, and the text typed so far with a '_' cursor
 //   hand       "1Right 2Left"
+//   starts     a thread's starts, one key 1..8 (a feed has one and skips it)
 //   length     mm with 2 decimals, 0 = until stopped (D or the limit switch);
 //              the ratio is computed here (core/lathe/ratio.h's
 //              gear_ratio_exact): one the follower cannot run exactly is
 //              refused with a message, never approximated
-//   ready      "OK to cut pass N" + the live line
+//   ready      "OK to cut pass N" + the live line; a multi-start thread
+//              "OK pass N st K/n": start K's pass (start K of n begins K-1
+//              n-ths of a turn after start 1, exactly: follower.h); A offers
+//              the next start instead
 //   cutting    "Wait index" until the leadscrew has synchronised, then the
 //              following error and the live line; ends when the leadscrew is
 //              done (length, limit switch, D)
 //   done       the slip (following error when it stopped), "OK=retract"
 //   retract    back to where the pass began at the rapid rate, a progress
 //              bar; then ready for the next pass, which the leadscrew
-//              re-enters on the same helix (it waits for the index again)
+//              re-enters on the same helix (it waits for the index again):
+//              the next start of a multi-start thread, after its last start
+//              the first one with the next pass number
 //   move       a signed distance in mm, then the move with a progress bar
 //   settings   one field per screen (core/ui/settings.h), A to step, D to
 //              edit; C leaves and stores the block (save(): the EEPROM's
@@ -42,17 +48,14 @@
 //              range; any key or 1.5 s goes back
 //
 // Lathe interface (L: static functions; a simulated one in
-// tests/host/ui_fake_lathe.h): engage(ratio, reversed, length_steps) ->
-// accepted, and then busy() until the pass ends; synced() (following the
+// tests/host/ui_fake_lathe.h): engage(ratio, reversed, length_steps, start,
+// starts) -> accepted, and then busy() until the pass ends; synced() (following the
 // spindle, not waiting for the index); busy(); stop_now(); position()
 // (steps); following_error() (steps); rpm(); move_to(steps, rate) ->
 // accepted, and then busy() until it ends; ms() (a free-running millisecond
 // count); save(settings).
 //
-// Numbers: a length or move in mm becomes steps as floor(um x counts per
-// turn / lead) (toward zero for negatives); the carriage position shows as
-// floor(steps x lead / counts) um, both exact in 128 bits (core/lathe/
-// wide.h), so nothing rounds twice.
+// Numbers: lengths, moves and the carriage's Z through units.h, exact.
 //
 // Object: zero-initialised storage is a valid state before start() (no
 // constructor code in the image).
@@ -60,55 +63,21 @@
 #include <stdint.h>
 
 #include "../lathe/ratio.h"
+#include "entries.h"
 #include "screen.h"
 #include "settings.h"
 #include "tables.h"
+#include "units.h"
 
 namespace am {
 namespace ui {
 
-// v m / d, the magnitude floored, saturated to +-(2^31 - 1); d > 0.
-__attribute__((noinline)) inline int32_t scale(int32_t v, uint32_t m, uint32_t d) {
-  U128 x = u128(v < 0 ? uint32_t(0) - uint32_t(v) : uint32_t(v)), rem;
-  mul_small(x, m);
-  divmod(x, u128(d), x, rem);
-  const int32_t mag = (!fits32(x) || x.w[0] > 0x7FFFFFFFu) ? 0x7FFFFFFF : int32_t(x.w[0]);
-  return v < 0 ? -mag : mag;
-}
-
-// The settings' machines have whole counts per turn (below 2^21.3) and a
-// lead's denominator of at most 1000 (0.1 TPI), so both products fit 32 bits.
-__attribute__((noinline)) inline int32_t um_to_steps(const Machine& m, int32_t um) {
-  return scale(um, m.leadscrew_counts.num * m.leadscrew.den, m.leadscrew.num);
-}
-
-inline int32_t steps_to_um(const Machine& m, int32_t steps) {
-  return scale(steps, m.leadscrew.num, m.leadscrew.den * m.leadscrew_counts.num);
-}
-
-enum class State : uint8_t { menu, entry, hand, ready, cutting, done, moving, settings, message };
-
-// What a number typed on the entry screen is for (entry_row()'s order).
-enum class Entry : uint8_t { feed, pitch_mm, pitch_tpi, length, move, setting };
-
-inline const FieldSpec& entry_row(Entry e) {
-  static const char kFeed[] AM_FLASH = "Feed mm/rev B:tb";
-  static const char kMm[] AM_FLASH = "Pitch mm A:TPI";
-  static const char kTpi[] AM_FLASH = "Pitch TPI A:mm";
-  static const char kLength[] AM_FLASH = "Length mm 0=run";
-  static const char kMove[] AM_FLASH = "Move mm *:minus";
-  static const FieldSpec kSpecs[] AM_FLASH = {
-      {kFeed, 1, 5000, 3}, {kMm, 10, 50000, 3}, {kTpi, 10, 2000, 1}, {kLength, 0, 200000, 2}, {kMove, -200000, 200000, 2},
-  };
-  return kSpecs[uint8_t(e)];
-}
+enum class State : uint8_t { menu, entry, hand, starts, ready, cutting, done, moving, settings, message };
 
 // The workflow's steps stay out of line: each is called from several places
 // and inlined copies cost the ATmega16 flash it does not have.
 #define AM_UI_OUTLINE __attribute__((noinline))
 
-constexpr uint8_t kEntryChars = 8;      // digits, '.', '-'
-constexpr int32_t kTooLarge = 1000000;  // a typed number saturates here
 constexpr uint16_t kMessageMs = 1500;
 constexpr uint16_t kRefreshMs = 100;
 
@@ -156,7 +125,7 @@ class Workflow {
 
   AM_UI_OUTLINE void begin_entry(Entry e) {
     entry_ = e;
-    typed_len_ = 0;
+    typed_.len = 0;
     row_ = 0xFF;  // the table's first row comes next
     go(State::entry);
   }
@@ -169,7 +138,7 @@ class Workflow {
     do row_ = uint8_t(row_ + 1 >= list_size(list) ? 0 : row_ + 1);
     while (table_value(list, row_) == was);
     // At most 6 characters ("80.0", "6.000", "0.500"): typed_ holds 8.
-    typed_len_ = Screen::format(typed_, table_value(list, row_), entry_ == Entry::pitch_tpi ? 1 : 3);
+    typed_.len = Screen::format(typed_.c, table_value(list, row_), entry_ == Entry::pitch_tpi ? 1 : 3);
   }
 
   // Time-driven changes: a message times out, a motion ends.
@@ -180,7 +149,7 @@ class Workflow {
       slip_ = L::following_error();
       go(State::done);
     } else if (state_ == State::moving) {
-      if (retracting_) ++pass_;
+      if (retracting_) next_start(true);
       go(retracting_ ? State::ready : State::menu);
     }
   }
@@ -198,12 +167,13 @@ class Workflow {
         }
         break;
       case State::entry:
-        if (digit || (k == '#' && !typed_point()) || (k == '*' && entry_ == Entry::move && typed_len_ == 0)) {
-          if (typed_len_ < kEntryChars) typed_[typed_len_++] = k == '#' ? '.' : k == '*' ? '-' : k;
+        if (digit || (k == '#' && !typed_.has_point()) || (k == '*' && entry_ == Entry::move && typed_.len == 0)) {
+          if (typed_.len < kEntryChars) typed_.c[typed_.len++] = k == '#' ? '.' : k == '*' ? '-' : k;
         } else if (k == 'C') {
-          if (typed_len_ == 0) go(entry_ == Entry::length ? State::hand : entry_ == Entry::setting ? State::settings
-                                                                                           : State::menu);
-          else --typed_len_;
+          if (typed_.len == 0) go(entry_ == Entry::length ? (thread_ ? State::starts : State::hand)
+                                  : entry_ == Entry::setting ? State::settings
+                                                             : State::menu);
+          else --typed_.len;
         } else if (k == 'A' && (entry_ == Entry::pitch_mm || entry_ == Entry::pitch_tpi)) {
           begin_entry(entry_ == Entry::pitch_mm ? Entry::pitch_tpi : Entry::pitch_mm);
         } else if (k == 'B' && entry_ <= Entry::pitch_tpi) {
@@ -216,16 +186,25 @@ class Workflow {
       case State::hand:
         if (k == '1' || k == '2') {
           left_ = k == '2';
-          begin_entry(Entry::length);
+          if (thread_) go(State::starts);
+          else begin_entry(Entry::length);
         }
         if (k == 'C') go(State::menu);
+        break;
+      case State::starts:
+        if (k >= '1' && k <= '8') {
+          starts_ = uint8_t(k - '0');
+          begin_entry(Entry::length);
+        }
+        if (k == 'C') go(State::hand);
         break;
       case State::ready:
         if (k == 'D') {
           pass_start_ = L::position();
-          if (L::engage(ratio_, reversed_, length_steps_)) go(State::cutting);
+          if (L::engage(ratio_, reversed_, length_steps_, start_, starts_)) go(State::cutting);
           else message(AM_TEXT("Cut refused"), State::ready);
         }
+        if (k == 'A') next_start(false);
         if (k == 'C') go(State::menu);
         break;
       case State::cutting:
@@ -253,7 +232,17 @@ class Workflow {
 
   AM_UI_OUTLINE void choose(const Pitch& p) {
     pitch_ = p;
+    thread_ = entry_ != Entry::feed;
+    starts_ = 1;
     go(State::hand);
+  }
+
+  // The start the next pass cuts: the next one, after the last the first
+  // again, and then (after a pass, `counted`) with the next pass number.
+  AM_UI_OUTLINE void next_start(bool counted) {
+    if (++start_ < starts_) return;
+    start_ = 0;
+    if (counted) ++pass_;
   }
 
   // A move at the rapid rate to `target`; refused: a message.
@@ -266,13 +255,6 @@ class Workflow {
   }
 
   // --- number entry -----------------------------------------------------
-  // Whether a decimal point has been typed ('#' then types no second one).
-  bool typed_point() const {
-    for (uint8_t i = 0; i < typed_len_; ++i)
-      if (typed_[i] == '.') return true;
-    return false;
-  }
-
   AM_UI_OUTLINE FieldSpec spec() const {
     return flash_copy(entry_ == Entry::setting ? &field_row(field_) : &entry_row(entry_));
   }
@@ -284,14 +266,14 @@ class Workflow {
     int32_t v = 0;
     uint8_t frac = 0, digits = 0;
     bool point = false;
-    const bool negative = typed_len_ && typed_[0] == '-';
-    for (uint8_t i = negative; i < typed_len_; ++i) {
-      if (typed_[i] == '.') {
+    const bool negative = typed_.len && typed_.c[0] == '-';
+    for (uint8_t i = negative; i < typed_.len; ++i) {
+      if (typed_.c[i] == '.') {
         point = true;
         continue;
       }
       ++digits;
-      v = v >= kTooLarge ? kTooLarge : v * 10 + (typed_[i] - '0');  // above every range, scaled or not
+      v = v >= kTooLarge ? kTooLarge : v * 10 + (typed_.c[i] - '0');  // above every range, scaled or not
       frac = uint8_t(frac + point);
     }
     if (!digits) return refuse(AM_TEXT("Type a number"), false);
@@ -320,7 +302,7 @@ class Workflow {
     }
     if (entry_ == Entry::length) {
       length_steps_ = um_to_steps(m, v * 10);
-      const GearRatio g = gear_ratio_exact(m, {pitch_, 1, left_ ? Hand::left : Hand::right});
+      const GearRatio g = gear_ratio_exact(m, {pitch_, starts_, left_ ? Hand::left : Hand::right});
       if (g.status != RatioStatus::exact) {
         message(AM_TEXT("Ratio not exact"), State::menu);
         return;
@@ -328,6 +310,7 @@ class Workflow {
       ratio_ = g.ratio;
       reversed_ = g.reversed;
       pass_ = 1;
+      start_ = 0;
       go(State::ready);
     }
   }
@@ -362,16 +345,24 @@ class Workflow {
         break;
       case State::entry: {
         s.line(0, spec().label);
-        for (uint8_t i = 0; i < kCols; ++i) s.put(1, i, i < typed_len_ ? typed_[i] : i == typed_len_ ? '_' : ' ');
+        for (uint8_t i = 0; i < kCols; ++i) s.put(1, i, i < typed_.len ? typed_.c[i] : i == typed_.len ? '_' : ' ');
         break;
       }
       case State::hand:
         s.line(0, AM_TEXT("Hand"));
         s.line(1, AM_TEXT("1Right 2Left"));
         break;
+      case State::starts:
+        s.line(0, AM_TEXT("Starts 1..8"));
+        s.line(1, AM_TEXT("1 = one start"));
+        break;
       case State::ready:
-        s.line(0, AM_TEXT("OK to cut pass"));
-        s.number(0, 14, pass_, 2, 0);
+        s.line(0, starts_ > 1 ? AM_TEXT("OK pass   st  /") : AM_TEXT("OK to cut pass"));
+        s.number(0, starts_ > 1 ? 7 : 14, pass_, 2, 0);
+        if (starts_ > 1) {  // 1..8: one digit each
+          s.put(0, 13, char('1' + start_));
+          s.put(0, 15, char('0' + starts_));
+        }
         live();
         break;
       case State::cutting:
@@ -423,10 +414,12 @@ class Workflow {
   uint8_t row_;  // the table row typed last, 0xFF for none
   uint8_t field_;
   bool left_;
+  bool thread_;     // a thread (its starts asked for), not a feed
+  uint8_t starts_;  // 1..8
+  uint8_t start_;   // the next pass's start, 0..starts_ - 1
   bool retracting_;
   bool msg_range_;
-  uint8_t typed_len_;
-  char typed_[kEntryChars];
+  TypedText typed_;
   uint16_t pass_;
   uint16_t entered_ms_;
   uint16_t drawn_ms_;

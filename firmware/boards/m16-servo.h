@@ -5,10 +5,15 @@
 // avrmotion-board: mcu=atmega16 f_cpu=16000000 app=lathe
 //
 // Pin map (firmware/boards/common/m16_wiring.h, and the two moved pins):
-//   PD5 (OC1A)  L298 ENABLE (both bridges in parallel): the 10-bit PWM; low
-//               with OC1A disconnected for duty 0 (the bridge off).
+//   PD5 (OC1A)  L298 ENABLE (both bridges in parallel): the 10-bit PWM while
+//               a pass or move drives; stopped, OC1A is disconnected and PD5
+//               is high (the brake with IN1 = IN2 = 0); low from reset until
+//               the first drive (the bridge off).
 //   PC0         L298 IN1 } high/low: +Z (away from the chuck), low/high: -Z,
-//   PC1         L298 IN2 } low/low: brake. The seed had them on PD0/PD1,
+//   PC1         L298 IN2 } low/low with ENABLE high: the brake (the motor's
+//               terminals shorted), which every stop applies and holds
+//               until the next drive (PD5 high as a port pin, OC1A
+//               disconnected). The seed had them on PD0/PD1,
 //               which are the UART here; PC0/PC1 are the stepper's step and
 //               direction on the m16-lathe, unused with a servo.
 //   PD2 (INT0)  motor encoder: the seed's 30-slot disc (H21A1) on the motor

@@ -60,6 +60,9 @@ TEST_F(UiTest, ThreadingSessionScreenByScreen) {
   EXPECT_EQ(r0(), "Hand            ");
   EXPECT_EQ(r1(), "1Right 2Left    ");
   press(ui, "1");
+  EXPECT_EQ(r0(), "Starts 1..8     ");
+  EXPECT_EQ(r1(), "1 = one start   ");
+  press(ui, "1");
   EXPECT_EQ(r0(), "Length mm 0=run ");
   press(ui, "20D");
   EXPECT_EQ(r0(), "OK to cut pass 1");
@@ -108,7 +111,7 @@ TEST_F(UiTest, ThreadingSessionScreenByScreen) {
 TEST_F(UiTest, LeftHandThirteenTpiFromTheKeys) {
   press(ui, "1A");
   EXPECT_EQ(r0(), "Pitch TPI A:mm  ");
-  press(ui, "13D2");
+  press(ui, "13D21");
   press(ui, "0D");  // length 0: until stopped
   EXPECT_EQ(r0(), "OK to cut pass 1");
   press(ui, "D");
@@ -128,6 +131,65 @@ TEST_F(UiTest, LeftHandThirteenTpiFromTheKeys) {
   EXPECT_EQ(FakeLathe::pos, -5000);
 }
 
+// A multi-start thread: its starts on their own screen (one key, 1..8),
+// the ratio for the lead (pitch x starts), and each pass offering the next
+// start, the first again with the next pass number; A skips to the next
+// start, C goes back through the screens.
+TEST_F(UiTest, MultiStartThreadOffersEachStartInTurn) {
+  press(ui, "11D2");
+  EXPECT_EQ(r0(), "Starts 1..8     ");
+  press(ui, "09C");  // 0 and 9 are not a number of starts; C goes back
+  EXPECT_EQ(r0(), "Hand            ");
+  press(ui, "13");
+  EXPECT_EQ(r0(), "Length mm 0=run ");
+  press(ui, "C");
+  EXPECT_EQ(r0(), "Starts 1..8     ");
+  press(ui, "3");
+  press(ui, "10D");
+  // 1.00 mm x 3 starts: a 3 mm lead, 3000 x 200 / (3175 x 40) = 600/127;
+  // 10 mm = floor(10000 x 200 / 3175) = 629 steps.
+  const char* offers[] = {"OK pass 1 st 1/3", "OK pass 1 st 2/3", "OK pass 1 st 3/3", "OK pass 2 st 1/3"};
+  for (int n = 0; n < 4; ++n) {
+    EXPECT_EQ(r0(), offers[n]) << n;
+    press(ui, "D");
+    ASSERT_EQ(FakeLathe::engages.size(), size_t(n + 1));
+    const FakeLathe::Engage& e = FakeLathe::engages[n];
+    EXPECT_EQ(e.ratio.num, 600u);
+    EXPECT_EQ(e.ratio.den, 127u);
+    EXPECT_FALSE(e.reversed);
+    EXPECT_EQ(e.length, 629);
+    EXPECT_EQ(e.start, n % 3) << n;
+    EXPECT_EQ(e.starts, 3u);
+    FakeLathe::index();
+    FakeLathe::run(1000);
+    wait_ms(ui, 10);
+    EXPECT_EQ(r0(), "Done slip      0");
+    press(ui, "D");  // retract to where the pass began
+    FakeLathe::run(1000);
+    wait_ms(ui, 10);
+    EXPECT_EQ(FakeLathe::pos, 0);
+  }
+  EXPECT_EQ(r0(), "OK pass 2 st 2/3");
+  press(ui, "A");  // skip to the next start, the same pass
+  EXPECT_EQ(r0(), "OK pass 2 st 3/3");
+  press(ui, "A");
+  EXPECT_EQ(r0(), "OK pass 2 st 1/3");
+  press(ui, "D");
+  ASSERT_EQ(FakeLathe::engages.size(), 5u);
+  EXPECT_EQ(FakeLathe::engages[4].start, 0u);
+  // A new thread starts again from start 1, pass 1; one start says so.
+  FakeLathe::stop_now();
+  wait_ms(ui, 10);
+  press(ui, "C");
+  press(ui, "11D11");
+  press(ui, "5D");
+  EXPECT_EQ(r0(), "OK to cut pass 1");
+  press(ui, "AD");  // A: nothing else to offer
+  ASSERT_EQ(FakeLathe::engages.size(), 6u);
+  EXPECT_EQ(FakeLathe::engages[5].start, 0u);
+  EXPECT_EQ(FakeLathe::engages[5].starts, 1u);
+}
+
 // B types the table's next distinct value into the entry; D takes it.
 TEST_F(UiTest, TablePickTypesTheRowsPitch) {
   press(ui, "1B");
@@ -140,7 +202,7 @@ TEST_F(UiTest, TablePickTypesTheRowsPitch) {
   EXPECT_EQ(r1(), "1.250_          ");  // M8
   press(ui, "B");
   EXPECT_EQ(r1(), "1.500_          ");  // M10
-  press(ui, "D1");
+  press(ui, "D11");
   press(ui, "0D");
   press(ui, "D");
   ASSERT_EQ(FakeLathe::engages.size(), 1u);  // 1500 x 200 / 127000 = 300/127
@@ -153,7 +215,7 @@ TEST_F(UiTest, InchAndFeedTables) {
   EXPECT_EQ(r1(), "4.0_            ");
   for (int k = 0; k < 11; ++k) press(ui, "B");  // 4.5 5 6 7 8 9 10 11 11.5 12 13
   EXPECT_EQ(r1(), "13.0_           ");
-  press(ui, "D2");
+  press(ui, "D21");
   press(ui, "0D");
   press(ui, "D");
   ASSERT_EQ(FakeLathe::engages.size(), 1u);  // 13 TPI, as typed: 40/13
@@ -169,13 +231,16 @@ TEST_F(UiTest, InchAndFeedTables) {
   EXPECT_EQ(r1(), "0.040_          ");
   press(ui, "D");
   EXPECT_EQ(r0(), "Hand            ");
-  press(ui, "110D");
+  press(ui, "1");  // a feed has one start: no starts screen
+  EXPECT_EQ(r0(), "Length mm 0=run ");
+  press(ui, "10D");
   press(ui, "D");
   // 40 um x 200 / (3175 x 40) = 8000 / 127000 = 8/127
   ASSERT_EQ(FakeLathe::engages.size(), 2u);
   EXPECT_EQ(FakeLathe::engages[1].ratio.num, 8u);
   EXPECT_EQ(FakeLathe::engages[1].ratio.den, 127u);
   EXPECT_EQ(FakeLathe::engages[1].length, 629);  // floor(10000 x 200 / 3175)
+  EXPECT_EQ(FakeLathe::engages[1].starts, 1u);
 }
 
 TEST_F(UiTest, EntryErrorsSayWhatIsWrongAndGoBack) {
@@ -209,7 +274,7 @@ TEST_F(UiTest, EntryErrorsSayWhatIsWrongAndGoBack) {
 TEST_F(UiTest, RefusedCutAndMoveLeaveTheCarriageStill) {
   FakeLathe::refuse = true;
   press(ui, "1");
-  press(ui, "1D1");
+  press(ui, "1D11");
   press(ui, "5D");
   press(ui, "D");
   EXPECT_EQ(r0(), "Cut refused     ");
@@ -278,7 +343,7 @@ TEST_F(UiTest, SettingsEditedValidatedAndSaved) {
   // The next cut uses them: 1.00 mm x 1600 / (3175 x 600) = 1600000 / 1905000 = 320/381.
   wait_ms(ui, 1600);
   press(ui, "1");
-  press(ui, "1D1");
+  press(ui, "1D11");
   press(ui, "0D");
   press(ui, "D");
   ASSERT_EQ(FakeLathe::engages.size(), 1u);
@@ -295,7 +360,7 @@ TEST_F(UiTest, RatioThatCannotRunExactlyIsRefused) {
   am::ui::seal(s);
   ui.start(s, true);
   press(ui, "1A");
-  press(ui, "199#9D1");
+  press(ui, "199#9D11");
   press(ui, "0D");
   // (254000 / 1999) / 49999 x 200 / 16381: the reduced denominator is above 2^31.
   const am::GearRatio g = am::gear_ratio(am::ui::machine(s), {am::Pitch{254000, 1999}, 1, am::Hand::right});
@@ -339,7 +404,7 @@ TEST_F(UiTest, TypedPitchesAndLengthsSweep) {
     const uint32_t pitch = 10 + rng() % 49991;      // um
     const uint32_t length = rng() % 200001;         // 0.01 mm
     char keys[64];
-    std::snprintf(keys, sizeof keys, "1%u#%03uD1%u#%02uD", pitch / 1000, pitch % 1000, length / 100, length % 100);
+    std::snprintf(keys, sizeof keys, "1%u#%03uD11%u#%02uD", pitch / 1000, pitch % 1000, length / 100, length % 100);
     press(ui, keys);
     ASSERT_EQ(ui.state(), State::ready) << keys;
     press(ui, "D");

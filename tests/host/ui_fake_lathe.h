@@ -18,6 +18,7 @@ struct FakeLathe {
     am::Ratio ratio;
     bool reversed;
     int32_t length;
+    uint8_t start, starts;
   };
   enum Motion { idle, cutting, moving };
 
@@ -40,9 +41,9 @@ struct FakeLathe {
     saved.clear();
   }
 
-  static bool engage(const am::Ratio& r, bool reversed, int32_t length) {
+  static bool engage(const am::Ratio& r, bool reversed, int32_t length, uint8_t start, uint8_t starts) {
     if (refuse) return false;
-    engages.push_back({r, reversed, length});
+    engages.push_back({r, reversed, length, start, starts});
     motion = cutting;
     synced_now = false;
     cut_start = pos;

@@ -90,7 +90,8 @@ namespace simtest {
 // (sim/dc_servo.h) on its leadscrew; lines as LatheRig sends them.
 struct ServoRig : LatheUart {
   explicit ServoRig(const sim::SpindleParams& p, const sim::ServoParams& s = sim::ServoParams())
-      : LatheUart("m16-servo", p), enable(&m->watch_pin('D', 5)) {
+      : LatheUart("m16-servo", p), enable(&m->watch_pin('D', 5)), in1(&m->watch_pin('C', 0)),
+        in2(&m->watch_pin('C', 1)) {
     servo.reset(new sim::DcServo(*m, s));
     wait_banner();
   }
@@ -102,6 +103,8 @@ struct ServoRig : LatheUart {
 
   std::unique_ptr<sim::DcServo> servo;
   const std::vector<sim::PinEdge>* enable;  // PD5, the L298's ENABLE
+  const std::vector<sim::PinEdge>* in1;     // PC0, IN1
+  const std::vector<sim::PinEdge>* in2;     // PC1, IN2
 };
 
 }  // namespace simtest

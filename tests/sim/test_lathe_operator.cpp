@@ -133,6 +133,9 @@ TEST(LatheOperator, WholeThreadingSessionFromTheKeys) {
   EXPECT_EQ(p.row0(), "Hand            ");
   EXPECT_EQ(p.row1(), "1Right 2Left    ");
   p.type("1");
+  EXPECT_EQ(p.row0(), "Starts 1..8     ");
+  EXPECT_EQ(p.row1(), "1 = one start   ");
+  p.type("1");
   EXPECT_EQ(p.row0(), "Length mm 0=run ");
   p.type("20D");
   EXPECT_EQ(p.row0(), "OK to cut pass 1");
@@ -191,6 +194,69 @@ TEST(LatheOperator, WholeThreadingSessionFromTheKeys) {
   EXPECT_LT(p.m->stack_bytes(), p.m->free_ram());
   std::printf("m16-panel session: stack %u B of %u B free above .data and .bss\n", p.m->stack_bytes(),
               p.m->free_ram());
+}
+
+// A three-start thread from the keys: 0.50 mm pitch, 1.50 mm lead, 10 mm,
+// on the seed's disc at 300 rpm. Each pass offers the next start; each
+// start's pass is checked count by count against its own helix, start k
+// k/3 of a turn (40/3 counts: not a whole count, held exactly) after start
+// 0, from the same base; after the third start the first again, pass 2.
+TEST(LatheOperator, MultiStartPassesFromTheKeysLandOnTheirPhase) {
+  Panel p({}, 300);
+  p.run_to(1.8);
+  p.type("1");
+  p.type("0#5D");
+  EXPECT_EQ(p.row0(), "Hand            ");
+  p.type("1");
+  EXPECT_EQ(p.row0(), "Starts 1..8     ");
+  EXPECT_EQ(p.row1(), "1 = one start   ");
+  p.type("3");
+  EXPECT_EQ(p.row0(), "Length mm 0=run ");
+  p.type("10D");
+  // floor(10000 x 800 / 3175) = 2519 steps toward the chuck.
+  const int64_t end = -2519;
+  const char* offers[] = {"OK pass 1 st 1/3", "OK pass 1 st 2/3", "OK pass 1 st 3/3", "OK pass 2 st 1/3",
+                          "OK pass 2 st 2/3"};
+  for (int n = 0; n < 4; ++n) {
+    const int k = n % 3;
+    EXPECT_EQ(p.row0(), offers[n]) << n;
+    const uint64_t armed = press_ok_after_index(p);
+    EXPECT_EQ(p.row0(), "Wait index      ") << n;
+    p.run_to(p.now() + 0.8);  // the pass takes 6.7 turns, 1.33 s
+    EXPECT_EQ(p.row0(), "Cut  err       0") << n;
+    ASSERT_TRUE(p.until_row1("OK=retract C=end", 3)) << n;
+    EXPECT_EQ(p.row0(), "Done slip      0") << n;
+    sim::ThreadSpec spec;
+    spec.pitch_num = 500;
+    spec.pitch_den = 1;
+    spec.starts = 3;
+    spec.start = k;
+    spec.counts_per_turn = 40;
+    const sim::PassResult r = sim::check_pass(*p.spindle, *p.m->axis('Z'), *p.step, spec, 0, armed, p.m->cycles(), &end);
+    ASSERT_TRUE(r.index_found) << n;
+    EXPECT_TRUE(r.locked) << n;
+    EXPECT_EQ(r.mismatches, 0u) << n;
+    EXPECT_EQ(r.position, end) << n;
+    EXPECT_EQ(r.expected, end) << n;
+    // The start's helix at the index (s = 0): floor(lambda k C / 3) steps
+    // from start 1's, which a pass cut on another start's phase would miss.
+    sim::ThreadSpec start0 = spec;
+    start0.start = 0;
+    const int64_t offset = sim::target_steps(spec, 0) - sim::target_steps(start0, 0);
+    std::printf("pass %d start %d of 3: %zu counts after the index, locked after %zu, %lld steps = the start's "
+                "helix, %lld steps from start 1's at the index\n",
+                n / 3 + 1, k + 1, r.counts, r.locked_after, (long long)r.position, (long long)offset);
+    p.type("D");
+    EXPECT_EQ(p.row0().substr(0, 9), "Retract Z") << n;
+    ASSERT_TRUE(p.m->run([&] { return p.row0() == offers[n + 1]; }, uint64_t(3 * p.m->f_cpu())) == sim::RunEnd::done)
+        << n;
+    // Row 1 follows row 0 on the bus: the live line within its 100 ms refresh.
+    ASSERT_TRUE(p.m->run([&] { return p.live_rpm_near(300); }, uint64_t(0.2 * p.m->f_cpu())) == sim::RunEnd::done)
+        << p.row1();
+    EXPECT_EQ(p.m->axis('Z')->position, 0) << n;
+  }
+  EXPECT_EQ(p.m->axis('Z')->decode_errors, 0u);
+  EXPECT_EQ(p.lcd->busy_writes(), 0u);
 }
 
 // The panel image within the ATmega16's flash with 10 % to spare (avr-size

@@ -1,5 +1,5 @@
 // The m16-servo image's outputs and size: a limit switch stops the PWM at
-// once, PWM zero is truly off, the front end refuses what it cannot run, and
+// once and the bridge brakes, PWM zero is truly off, a stop brakes the motor, the front end refuses what it cannot run, and
 // the image leaves 10 % of the flash and stack headroom. The thread passes
 // themselves: test_lathe_servo.cpp; the pass's figures: servo_pass.h.
 #include <gtest/gtest.h>
@@ -31,6 +31,53 @@ sim::SpindleParams running_from(double t0) {
   return p;
 }
 
+// The bridge from its three pins (ENABLE, IN1, IN2) replayed in cycle
+// order: driven while ENABLE is high with IN1 != IN2, braking while it is
+// high with IN1 = IN2 = 0. Over [from, to): the cycles driven, the drives
+// begun, the cycle the last one ended (from if none did); and the state at
+// `to`.
+struct Bridge {
+  uint64_t driven = 0, last_drive_end = 0;
+  size_t drives_begun = 0;
+  bool braking_at_end = false, driven_at_end = false;
+};
+Bridge bridge(const ServoRig& rig, uint64_t from, uint64_t to) {
+  struct Ev {
+    uint64_t cycle;
+    int pin;
+    bool level;
+  };
+  std::vector<Ev> ev;
+  const std::vector<sim::PinEdge>* pins[] = {rig.enable, rig.in1, rig.in2};
+  for (int k = 0; k < 3; ++k)
+    for (const sim::PinEdge& e : *pins[k]) ev.push_back({e.cycle, k, e.level});
+  std::stable_sort(ev.begin(), ev.end(), [](const Ev& a, const Ev& b) { return a.cycle < b.cycle; });
+  Bridge b;
+  b.last_drive_end = from;
+  bool level[3] = {false, false, false};
+  bool driven = false;
+  uint64_t since = from;
+  for (size_t i = 0; i <= ev.size(); ++i) {
+    const uint64_t c = i < ev.size() ? std::min(std::max(ev[i].cycle, from), to) : to;
+    if (driven) b.driven += c - since;
+    since = c;
+    if (i == ev.size()) break;
+    level[ev[i].pin] = ev[i].level;
+    if (i + 1 < ev.size() && ev[i + 1].cycle == ev[i].cycle) continue;  // one cycle's changes together
+    const bool now = level[0] && level[1] != level[2];
+    if (ev[i].cycle >= from && ev[i].cycle < to) {
+      if (now && !driven) ++b.drives_begun;
+      if (!now && driven) b.last_drive_end = ev[i].cycle;
+    }
+    if (ev[i].cycle < to) {
+      driven = now;
+      b.driven_at_end = now;
+      b.braking_at_end = level[0] && !level[1] && !level[2];
+    }
+  }
+  return b;
+}
+
 TEST(LatheServo, LimitSwitchStopsThePwmAtOnce) {
   ServoRig rig(running_from(0.2));
   ASSERT_EQ(rig.send("G33 Z-30 K1"), "ok");
@@ -57,23 +104,17 @@ TEST(LatheServo, LimitSwitchStopsThePwmAtOnce) {
   const double x_hit = rig.servo->position();
   rig.m->hold_input('D', 7, false);
   rig.run_until(double(hit) / rig.m->f_cpu() + 0.1);
-  // ENABLE's last edge after the switch must be a fall, within the bound,
-  // and nothing after it.
-  uint64_t off = hit;
-  size_t rises_after = 0;
-  for (const auto& e : *rig.enable) {
-    if (e.cycle < hit) continue;
-    if (e.level) ++rises_after;
-    else off = e.cycle;
-  }
-  const auto& edges = *rig.enable;
-  ASSERT_FALSE(edges.empty());
-  EXPECT_FALSE(edges.back().level) << "ENABLE left high";
-  const uint64_t stop_cycles = off - hit;
-  std::printf("limit switch: ENABLE low for good %llu cycles (%.1f us) after it, %zu rises after it; "
-              "the motor coasted %.1f counts\n",
+  // The drive's last end after the switch within the bound, and from then
+  // the brake: ENABLE high, IN1 = IN2 = 0.
+  const Bridge b = bridge(rig, hit, rig.m->cycles());
+  EXPECT_FALSE(b.driven_at_end) << "the bridge still drives";
+  EXPECT_TRUE(b.braking_at_end) << "the bridge does not brake";
+  const uint64_t stop_cycles = b.last_drive_end - hit;
+  const size_t rises_after = b.drives_begun;
+  std::printf("limit switch: the drive off for good %llu cycles (%.1f us) after it, %zu drives begun after it, "
+              "then %s; the motor ran down %.1f counts\n",
               (unsigned long long)stop_cycles, stop_cycles * 1e6 / rig.m->f_cpu(), rises_after,
-              std::fabs(rig.servo->position() - x_hit));
+              b.braking_at_end ? "braking" : "not braking", std::fabs(rig.servo->position() - x_hit));
   EXPECT_LE(stop_cycles, kLimitBound);
   // The vectors' longest runs (entry to RETI): the switch is read every
   // overflow (1024 cycles), so the worst case is a period plus the longest
@@ -161,18 +202,72 @@ TEST(LatheServo, PwmZeroIsTrulyOff) {
       last_fall = e[i].cycle;
     }
   }
-  const uint64_t after = high_cycles(e, stopped + 1024, rig.m->cycles());
+  const Bridge after_stop = bridge(rig, stopped + 1024, rig.m->cycles());
+  const uint64_t after = after_stop.driven;
   std::printf("PWM: armed 0.9 s (%llu periods at duty 0), %llu cycles high; the pass: %llu pulses, the shortest "
-              "%llu cycles, %llu whole periods at duty 0 between them; after STOP %llu cycles high\n",
+              "%llu cycles, %llu whole periods at duty 0 between them; after STOP %llu cycles driven, %s\n",
               (unsigned long long)no_width, (unsigned long long)armed_high, (unsigned long long)pulses,
-              (unsigned long long)shortest, (unsigned long long)zero_periods, (unsigned long long)after);
+              (unsigned long long)shortest, (unsigned long long)zero_periods, (unsigned long long)after,
+              after_stop.braking_at_end ? "braking" : "not braking");
   EXPECT_GT(pulses, 1000u);
   EXPECT_GT(zero_periods, 0u) << "the pass never asked for duty 0";
   EXPECT_EQ(after, 0u);
-  ASSERT_FALSE(e.empty());
-  EXPECT_FALSE(e.back().level);
-  // The motor's own account: ENABLE high only while the pass ran.
-  EXPECT_EQ(rig.servo->enable_high_cycles(), high_cycles(e, armed, pass_end + 1024));
+  EXPECT_TRUE(after_stop.braking_at_end);
+  // The motor's own account: driven only while the pass ran, as the pins say.
+  EXPECT_EQ(rig.servo->driven_cycles(), bridge(rig, armed, pass_end + 1024).driven);
+  EXPECT_EQ(rig.servo->driven_cycles(), high_cycles(e, armed, pass_end + 1024));
+  EXPECT_GT(rig.servo->brake_cycles(), uint64_t(0.5 * rig.m->f_cpu()));
+}
+
+// The brake at a pass's end: a motor that runs on ten times longer when
+// free (the model's coast_pole = pole / 10) stops within the identified
+// plant's w tau, as the shorted motor does, not w 10 tau.
+TEST(LatheServo, BrakeStopsTheMotorAtThePassEnd) {
+  sim::ServoParams sp;
+  sp.coast_pole = 74.29 / 10;
+  ServoRig rig(running_from(0.2), sp);
+  ASSERT_EQ(rig.send("G33 Z-10 K1"), "ok");
+  rig.run_until(4.0);
+  ASSERT_TRUE(rig.wait_idle(1));
+  const std::string st = rig.status();
+  EXPECT_EQ(field(st, "last"), "length") << st;
+  const Bridge b = bridge(rig, 0, rig.m->cycles());
+  EXPECT_FALSE(b.driven_at_end);
+  EXPECT_TRUE(b.braking_at_end) << "the bridge does not brake";
+  const uint64_t end = b.last_drive_end;
+  double w = 0;  // the motor's speed where the drive ended: the log's entry at or after it
+  for (const sim::ServoSample& x : rig.servo->log())
+    if (x.cycle >= end) {
+      w = std::fabs(x.speed);
+      break;
+    }
+  const double ran = std::fabs(rig.servo->position() - rig.servo->position_at(end));
+  const double braked = w / sp.pole, free_running = w / sp.coast_pole;
+  std::printf("brake: %.0f counts/s where the drive ended; ran down %.1f counts (w tau braked %.1f, free running "
+              "%.1f); %s\n",
+              w, ran, braked, free_running, st.c_str());
+  EXPECT_GT(w, 1000.0);  // 300 rpm, 1 mm: 1228 counts/s
+  EXPECT_LE(ran, 1.2 * braked + 1);
+  // The next pass, armed from the brake: the bridge is not driven at all
+  // until the index locks it (the brake released before OC1A takes the pin).
+  ASSERT_EQ(rig.send("G33 Z-20 K1"), "ok");
+  const uint64_t armed = rig.last.sent_cycle;
+  rig.run_until(double(rig.m->cycles()) / rig.m->f_cpu() + 0.5);
+  uint64_t index = 0;
+  bool was = true;
+  for (const sim::SpindleTransition& t : rig.spindle->log()) {
+    if (t.cycle > armed && t.index && !was) {
+      index = t.cycle;
+      break;
+    }
+    if (t.cycle > armed) was = t.index;
+  }
+  ASSERT_GT(index, armed);
+  const Bridge armed_bridge = bridge(rig, armed, index);
+  std::printf("armed from the brake: %.1f ms to the index, %llu cycles driven\n",
+              (index - armed) * 1e3 / rig.m->f_cpu(), (unsigned long long)armed_bridge.driven);
+  EXPECT_EQ(armed_bridge.driven, 0u);
+  EXPECT_GT(bridge(rig, index, rig.m->cycles()).driven, 0u);
 }
 
 TEST(LatheServo, FrontEndRefusals) {

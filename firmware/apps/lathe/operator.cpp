@@ -35,8 +35,8 @@ void apply_encoder(const am::ui::Settings& s) {
 }
 
 struct Lathe {
-  static bool engage(const am::Ratio& r, bool reversed, int32_t length) {
-    return leadscrew::engage(r, reversed, length, 0, 1) == leadscrew::Refusal::none;
+  static bool engage(const am::Ratio& r, bool reversed, int32_t length, uint8_t start, uint8_t starts) {
+    return leadscrew::engage(r, reversed, length, start, starts) == leadscrew::Refusal::none;
   }
   static bool synced() { return leadscrew::state() != leadscrew::State::armed; }
   static bool busy() { return leadscrew::busy(); }

@@ -18,8 +18,8 @@
 // the feedforward is the target's speed over the plant's gain. The error
 // target - count drives the PID (core/lathe/servo_pid.h), which drives one
 // way only: the pass's. The pass ends when the follower's target reaches the
-// end: the drive stops at once (duty 0, brake bits), the motor coasts in the
-// same direction and is counted, and the state stays `moving` until the
+// end: the drive stops at once and brakes (IN1 = IN2 = 0, ENABLE high), the
+// motor runs down in the same direction and is counted, and the state stays `moving` until the
 // encoder has been quiet for kQuietSamples; last_slip() is then the end's
 // target minus where the carriage stopped.
 // The base of every pass is the reference (reference()): where the
@@ -101,7 +101,7 @@ inline uint32_t fine_now() {
 // datasheet's "OCR1x equal to TOP: constant output"; non-inverting PWM at
 // OCR1A = 0 would still pulse once a period). OCR1A is double-buffered, so
 // a duty takes effect from the next period whole. Stopped, OC1A is
-// disconnected: PD5 is its PORT bit, low, at once.
+// disconnected: PD5 is its PORT bit, high, at once (the brake, below).
 constexpr uint16_t kTop = 1023;
 constexpr uint8_t kConnected = kTccr1a | _BV(COM1A1) | _BV(COM1A0);
 inline void set_duty(uint16_t duty) { OCR1A = kTop - duty; }
@@ -116,14 +116,16 @@ inline void bridge_direction(int8_t d) {
   }
 }
 
-// The drive stops at once: duty 0, both direction inputs low (the L298's
-// brake code); the motor coasts and is still counted in dir_ until it
-// stands (quiet), then the state is idle. The reference becomes `target`.
+// The drive stops at once and brakes: IN1 = IN2 = 0 first, then ENABLE high
+// (PD5's PORT bit, OC1A disconnected): the L298's fast motor stop, held to
+// the next drive. The motor is still counted in dir_ until it stands
+// (quiet), then the state is idle. The reference becomes `target`.
 void drive_off(Stop why, int32_t target) {
-  TCCR1A = kTccr1a;
-  OCR1A = kTop;
   In1::low();
   In2::low();
+  board::ServoPwm::high();
+  TCCR1A = kTccr1a;
+  OCR1A = kTop;
   driving_ = false;
   quiet_ = 0;
   stop_ = why;
@@ -146,9 +148,7 @@ int32_t target_now() {
 
 void halt(Stop why) {
   if (state_ == State::idle) return;
-  if (!driving_ && state_ == State::moving) {  // already coasting
-    return;
-  }
+  if (!driving_ && state_ == State::moving) return;  // already stopped, the motor still turning
   drive_off(why, state_ == State::armed ? reference_ : target_now());
 }
 
@@ -250,6 +250,7 @@ void sample() {
 }
 
 void start_drive(int8_t d) {
+  board::ServoPwm::low();  // the brake off, before OC1A takes the pin
   OCR1A = kTop;
   TCCR1A = kConnected;  // constant low until the first sample's duty
   dir_ = d;
