@@ -93,7 +93,7 @@ struct AxisSet<> {
   static int8_t index_of(char, uint8_t = 0) { return -1; }
   static constexpr char name_at(uint8_t) { return '?'; }
   static constexpr uint32_t max_rate_at(uint8_t) { return 0; }
-  static uint32_t steps_per_m_at(uint8_t) { return 0; }
+  static constexpr uint32_t steps_per_m_at(uint8_t) { return 0; }
   static int32_t units_for(uint8_t, int32_t, bool) { return 0; }
   static uint8_t units_per_full_step_at(uint8_t) { return 1; }
   static constexpr bool own_units = false;
@@ -150,7 +150,7 @@ struct AxisSet<First, Rest...> {
   static constexpr uint32_t max_rate_at(uint8_t index) {
     return index == 0 ? OwnMaxRate<First>::value : Tail::max_rate_at(uint8_t(index - 1));
   }
-  static uint32_t steps_per_m_at(uint8_t index) {
+  static constexpr uint32_t steps_per_m_at(uint8_t index) {
     return index == 0 ? First::descriptor().steps_per_m : Tail::steps_per_m_at(uint8_t(index - 1));
   }
   // Position units moved by `steps` steps of axis `index` (see OwnUnits).

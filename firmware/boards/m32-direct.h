@@ -15,7 +15,7 @@ using namespace m32_wiring;
 // The printer's endstops and homing (m32_wiring.h, docs/homing.md).
 using Endstops = EndstopWiring;
 constexpr bool kHoming = true;
-constexpr HomingSettings<3> kHomingSettings = kPrinterHoming;
+constexpr HomingSettings<3> kHomingSettings = printer_homing<Axes>();
 
 using Claims = hal::ClaimSet<kStepClock, kClock, hal::claim::uart, Axes::Claims::all, Endstops::claims>;
 

@@ -64,7 +64,7 @@ std::string mm(double v) {
 }
 
 // The board's figures (firmware/boards/common/m32_wiring.h: kMaxStepRate
-// 40000 steps/s, kDefaultAccel 500000 steps/s^2, kPrinterHoming), written
+// 40000 steps/s, kDefaultAccel 500000 steps/s^2, printer_homing()), written
 // here again on their own and turned into mm with the image's own steps/mm
 // (its descriptor, as the simulator reads it).
 std::map<int, std::string> board_defaults(sim::Machine& m) {

@@ -26,9 +26,9 @@ struct Heater {
 
 // Hard limits, homing (G28) and soft limits on the min endstops
 // (docs/homing.md, m32_wiring.h).
-using Endstops = EndstopWiring;
+using Endstops = m32_wiring::EndstopsOn<Axes>;
 constexpr bool kHoming = true;
-constexpr HomingSettings<3> kHomingSettings = kPrinterHoming;
+constexpr HomingSettings<3> kHomingSettings = m32_wiring::printer_homing<Axes>();
 
 using Claims = hal::ClaimSet<kStepClock, kClock, hal::claim::uart, Axes::Claims::all, Heater::claims, Endstops::claims>;
 

@@ -20,23 +20,37 @@
 namespace m32_wiring {
 
 using hal::Pin;
-using Axes = AxisSet<StepDirAxis<'X', Pin<'C', 0>, Pin<'C', 1>, Pin<'B', 0>, true, 1000000>,
-                     StepDirAxis<'Y', Pin<'C', 2>, Pin<'C', 3>, Pin<'B', 1>, true, 1000000>,
-                     StepDirAxis<'Z', Pin<'C', 4>, Pin<'C', 5>, Pin<'B', 2>, true, 1000000>,
-                     StepDirAxis<'E', Pin<'C', 6>, Pin<'C', 7>, Pin<'B', 3>, true, 1000000>>;
+// The axes at XY, Z and E steps per metre (a printer profile's,
+// firmware/boards/m32-i3.h); the seed's 1 um a step on all four.
+template <uint32_t XY, uint32_t Z, uint32_t E>
+using AxesAt = AxisSet<StepDirAxis<'X', Pin<'C', 0>, Pin<'C', 1>, Pin<'B', 0>, true, XY>,
+                       StepDirAxis<'Y', Pin<'C', 2>, Pin<'C', 3>, Pin<'B', 1>, true, XY>,
+                       StepDirAxis<'Z', Pin<'C', 4>, Pin<'C', 5>, Pin<'B', 2>, true, Z>,
+                       StepDirAxis<'E', Pin<'C', 6>, Pin<'C', 7>, Pin<'B', 3>, true, E>>;
+using Axes = AxesAt<1000000, 1000000, 1000000>;
 
 // The min endstops of X, Y and Z (docs/homing.md): switches to ground on the
 // pins' pull-ups, closed reads low. PD2 and PD3 are INT0's and INT1's pins,
 // PD4 is OC1B's: reading a switch there claims them (a program that uses
 // them, m32.h, adds EndstopWiring::claims to its set).
-using EndstopWiring = EndstopSet<Axes, false, Endstop<'X', Pin<'D', 2>, hal::claim::int0>,
-                                 Endstop<'Y', Pin<'D', 3>, hal::claim::int1>, Endstop<'Z', Pin<'D', 4>, hal::claim::oc1b>>;
+template <typename A>
+using EndstopsOn = EndstopSet<A, false, Endstop<'X', Pin<'D', 2>, hal::claim::int0>,
+                              Endstop<'Y', Pin<'D', 3>, hal::claim::int1>, Endstop<'Z', Pin<'D', 4>, hal::claim::oc1b>>;
+using EndstopWiring = EndstopsOn<Axes>;
 // Homing on them: X and Y home at 25 mm/s and locate at 1 mm/s, Z at 4 and
 // 0.5 mm/s; 1 mm back-off and pull-off; after homing every axis is at 0 and
-// may go 200 mm (Z 180 mm) up from there: an i3-style printer.
-constexpr HomingSettings<3> kPrinterHoming = {{{25000, 1000, 1000, 1000, 0, 200000},
-                                               {25000, 1000, 1000, 1000, 0, 200000},
-                                               {4000, 500, 1000, 1000, 0, 180000}}};
+// may go 200 mm (Z 180 mm) up from there: an i3-style printer. In steps of
+// the axes A (um / mm per step: steps per metre / 1000).
+constexpr HomingAxis homing_axis(uint32_t spm, uint32_t seek_um_s, uint32_t locate_um_s, uint32_t travel_um) {
+  return HomingAxis{uint16_t(seek_um_s * (spm / 1000) / 1000), uint16_t(locate_um_s * (spm / 1000) / 1000),
+                    uint16_t(spm / 1000), uint16_t(spm / 1000), 0, travel_um / 1000 * (spm / 1000)};
+}
+template <typename A>
+constexpr HomingSettings<3> printer_homing() {
+  return {{homing_axis(A::steps_per_m_at(0), 25000, 1000, 200000),
+           homing_axis(A::steps_per_m_at(1), 25000, 1000, 200000),
+           homing_axis(A::steps_per_m_at(2), 4000, 500, 180000)}};
+}
 
 // Hardware claims (hal/avr/claims.h, checked when the image compiles): Timer1
 // is the step clock, the UART talks to the host, Timer0 is the time base
