@@ -25,22 +25,25 @@ void SerialHost::add_line(const std::string& line) {
   send_next();
 }
 
-void SerialHost::send_raw(const std::string& bytes) {
+void SerialHost::send_raw(const std::string& bytes, uint8_t together) {
   const bool idle = raw_pos_ >= raw_.size();
   raw_ += bytes;
-  if (idle) avr_cycle_timer_register(avr_, byte_cycles_, &SerialHost::on_raw_slot, this);
+  raw_together_ = together ? together : 1;
+  if (idle) avr_cycle_timer_register(avr_, byte_cycles_ * raw_together_, &SerialHost::on_raw_slot, this);
 }
 
 uint64_t SerialHost::on_raw_slot(avr_t*, uint64_t when, void* self) {
   auto* host = static_cast<SerialHost*>(self);
   if (host->raw_pos_ >= host->raw_.size()) return 0;
-  const char c = host->raw_[host->raw_pos_++];
   if (host->last_byte_cycle_ && (!host->min_byte_interval_ || when - host->last_byte_cycle_ < host->min_byte_interval_))
     host->min_byte_interval_ = when - host->last_byte_cycle_;
   host->last_byte_cycle_ = when;
-  avr_raise_irq(host->input_irq_, uint8_t(c));
-  if (host->relay_) host->relay_byte(c, when);
-  if (host->raw_pos_ < host->raw_.size()) return when + host->byte_cycles_;
+  for (uint8_t k = 0; k < host->raw_together_ && host->raw_pos_ < host->raw_.size(); ++k) {
+    const char c = host->raw_[host->raw_pos_++];
+    avr_raise_irq(host->input_irq_, uint8_t(c));
+    if (host->relay_) host->relay_byte(c, when);
+  }
+  if (host->raw_pos_ < host->raw_.size()) return when + host->byte_cycles_ * host->raw_together_;
   host->raw_.clear();  // drained: the queue starts again from empty
   host->raw_pos_ = 0;
   return 0;

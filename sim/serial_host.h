@@ -48,7 +48,10 @@ class SerialHost {
   void set_wait_line(const std::string& line) { wait_line_ = line; }
   // Sends bytes at the line's byte rate without waiting for any answer, as a
   // sender that ignores the flow control would (for flood tests).
-  void send_raw(const std::string& bytes);
+  // `together` bytes at once every `together` byte times: the same rate,
+  // but the UART's receive buffer holds two at a time, as it does when the
+  // MCU takes its bytes late (its receive interrupt held off by others).
+  void send_raw(const std::string& bytes, uint8_t together = 1);
   bool finished() const { return finished_; }
 
   // Relay mode: call before the run, then relay() the client's bytes as they
@@ -56,7 +59,7 @@ class SerialHost {
   void relay_only() { relay_ = true; }
   void relay(const char* bytes, size_t n) { send_raw(std::string(bytes, n)); }
   size_t relay_backlog() const { return raw_.size() - raw_pos_; }
-  // Shortest time between two send_raw()/relay() bytes handed to the UART
+  // Shortest time between two send_raw()/relay() slots handed to the UART
   // (cycles; 0 until two were): never below the byte time.
   uint64_t min_byte_interval() const { return min_byte_interval_; }
   // The cycle the last send_raw()/relay() byte was handed to the UART (0
@@ -104,6 +107,7 @@ class SerialHost {
   size_t outgoing_pos_ = 0;
   std::string raw_;
   size_t raw_pos_ = 0;
+  uint8_t raw_together_ = 1;
   bool awaiting_answer_ = false;
   bool wait_sent_ = false;
   std::string wait_line_ = "WAIT";

@@ -86,15 +86,19 @@ void write_i32(int32_t v) {
 }  // namespace hal
 
 // Both UART handlers re-enable interrupts as soon as their own source is
-// quiet (the byte read, or the transmit interrupt masked), so the step
-// interrupt waits for at most their prologue, about 25 cycles, and never for
-// their whole body: a hardware-timed step pulse must end before the next
-// compare match, 107 cycles later at 150 kHz.
-ISR(HAL_UART_RX_VECT) {
+// masked (RXCIE, UDRIE), so the step interrupt waits for at most their
+// prologue, about 30 cycles, and never for their whole body: a
+// hardware-timed step pulse must end before the next compare match, 107
+// cycles later at 150 kHz. The receive handler masks its own interrupt
+// because RXC is a level: with a second byte already in the two-byte
+// receive buffer (the first taken late) it stays set after the UDR read,
+// and an unmasked handler would nest, store the second byte first and swap
+// the two (a line's text changed, its checksum's XOR not). The UCSRB
+// read-modify-writes cannot lose a bit: every handler puts back the enable
+// it cleared before it returns, so any value read outside one is whole.
+namespace {
+void take(uint8_t status, uint8_t c) {
   using namespace hal::uart;
-  const uint8_t status = HAL_UCSRA;
-  const uint8_t c = HAL_UDR;  // clears RXC: no re-entry until the next byte
-  sei();
   if (status & (_BV(HAL_DOR) | _BV(HAL_FE))) rx_lost = true;
 #ifdef HAL_UART_REALTIME
   if (take_realtime(c)) return;
@@ -107,6 +111,18 @@ ISR(HAL_UART_RX_VECT) {
   rx_buf[head % kRxSize] = c;
   __atomic_signal_fence(__ATOMIC_RELEASE);  // the byte before the index that publishes it
   rx_head = uint8_t(head + 1);
+}
+}  // namespace
+
+ISR(HAL_UART_RX_VECT) {
+  const uint8_t status = HAL_UCSRA;
+  const uint8_t c = HAL_UDR;
+  HAL_UCSRB &= uint8_t(~_BV(HAL_RXCIE));  // the next byte waits for this one
+  sei();
+  take(status, c);
+  // Stored: a byte already waiting may nest from here on, and the return
+  // runs with interrupts on (the step interrupt is not held up by it).
+  HAL_UCSRB |= _BV(HAL_RXCIE);
 }
 
 ISR(HAL_UART_UDRE_VECT) {

@@ -113,7 +113,10 @@ TEST(Printcore, ASlicerPrintStreamsThroughThePtyWithAResendAndEndsExactly) {
     std::ofstream out(file);
     for (const std::string& l : print.lines) out << l << "\n";
   }
-  ptytest::SimProcess sim({"--board", "m32", "--pty", "--speed", "max", "--linger", "0", "--max-seconds", "300",
+  // printcore opens the port, closes it and opens it again (its parity
+  // workaround for Arduino boards): --linger 0 could end the run between the
+  // two, and printcore would wait on a port nobody serves.
+  ptytest::SimProcess sim({"--board", "m32", "--pty", "--speed", "max", "--linger", "1", "--max-seconds", "300",
                            "--report", report});
   const std::string port = sim.pty_path();
   ASSERT_FALSE(port.empty()) << sim.stderr_text();
@@ -129,10 +132,10 @@ TEST(Printcore, ASlicerPrintStreamsThroughThePtyWithAResendAndEndsExactly) {
 
   // printcore's side: the break was made and refused, with a resend of
   // that line; every line it sent (the file's, its two M110, the resent
-  // line, our M400) got exactly one ok. Any other refusal must be a
-  // checksum mismatch with its own resend: one extra was seen once in four
-  // CI runs under load (a byte changed between printcore and the UART, cause
-  // not found yet); Marlin's resend recovers it, and the test counts it.
+  // line, our M400) got exactly one ok; no other refusal. (An extra checksum
+  // mismatch once came in about one run of four under load: two bytes in
+  // the receive buffer swapped by a nesting receive handler, fixed in
+  // hal/avr/uart.cpp, tests/sim/test_serial_order.cpp.)
   const std::string expected_error = "Error:checksum mismatch, Last Line: " + std::to_string(corrupt - 1);
   EXPECT_NE(summary.find("\"corrupted\": true"), std::string::npos) << summary;
   EXPECT_NE(summary.find("\"errors\": [\"" + expected_error + "\""), std::string::npos) << summary;
@@ -148,7 +151,8 @@ TEST(Printcore, ASlicerPrintStreamsThroughThePtyWithAResendAndEndsExactly) {
                            : long(std::count(summary.begin() + long(resends_at),
                                              summary.begin() + long(summary.find(']', resends_at)), ',')) + 1;
   EXPECT_EQ(resends, refusals) << summary;
-  std::printf("printcore: %ld refusal(s) with a resend each, %ld beyond the injected one\n", refusals, refusals - 1);
+  EXPECT_EQ(refusals, 1) << summary;
+  std::printf("printcore: %ld refusal(s) with a resend each\n", refusals);
   EXPECT_EQ(summary_number(summary, "sent"), long(sent_lines) + 2 + refusals + 1) << summary;
   EXPECT_EQ(summary_number(summary, "oks"), summary_number(summary, "sent")) << summary;
   EXPECT_LE(summary_number(summary, "m105_oks"), summary_number(summary, "m105_sent")) << summary;
