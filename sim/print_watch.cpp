@@ -13,12 +13,15 @@ namespace sim {
 
 namespace {
 
-// The line the firmware printed just before the `ok` of response `r`.
+// The line the firmware printed just before the `ok` of response `r`: the
+// first `ok` after r's first byte went out (one line in flight; not r's
+// answer_cycle, which a host's line lost at a reset shifts by one in a
+// --pty run: the simulator pairs answers with lines in order).
 bool line_before_ok(const SerialHost& serial, const Response& r, std::string& line) {
   const std::vector<std::string>& got = serial.received();
   const std::vector<uint64_t>& cycles = serial.received_cycles();
   for (size_t k = 1; k < got.size() && k < cycles.size(); ++k) {
-    if (cycles[k] != r.answer_cycle || !SerialHost::is_ok(got[k])) continue;
+    if (cycles[k] <= r.sent_cycle || !SerialHost::is_ok(got[k])) continue;
     line = got[k - 1];
     return true;
   }
@@ -34,7 +37,7 @@ bool last_echo(const SerialHost& serial, const char* code, Accept accept) {
     std::string line = rs[i].line, echo;
     if (line.size() > 1 && line[0] == 'N') line.erase(0, std::min(line.size(), line.find(' ') + 1));
     const size_t n = std::char_traits<char>::length(code);
-    if (line.compare(0, n, code) != 0 || (line.size() > n && line[n] != ' ') || !SerialHost::is_ok(rs[i].answer))
+    if (line.compare(0, n, code) != 0 || (line.size() > n && line[n] != ' '))
       continue;
     if (line_before_ok(serial, rs[i], echo) && echo.rfind("echo:", 0) == 0 && accept(echo.substr(5))) return true;
   }

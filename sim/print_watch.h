@@ -19,8 +19,8 @@
 //     fraction over the plant's last 100 ms log step; the firmware's
 //     setpoint as the plant logs it (its RAM, for information).
 //   And two things the firmware says, read from its lines (free functions
-//   below), each from the line the firmware printed just before the `ok`
-//   of a code's line (so an M117 whose text is `Progress: 5%` is no M73;
+//   below), each from the line the firmware printed just before the first
+//   `ok` after a code's line went out (one line in flight) (so an M117 whose text is `Progress: 5%` is no M73;
 //   a line a host numbered, `N<n> M117 ...*<sum>`, counts as well):
 //   last_progress(), the percent of the last M73's `echo:Progress: <P>%`
 //   (an M73 without P, whose echo has no percent, is passed over; -1: no
