@@ -367,7 +367,7 @@ int main(int argc, char** argv) {
   const std::vector<PrintScenario>& prints = print_scenarios();
   for (size_t i = 0; i < prints.size(); ++i) {
     const PrintScenario s = prints[i];
-    jobs.insert(jobs.begin() + long(1 + i), Job{std::string("print m32 ") + s.label,
+    jobs.insert(jobs.begin() + long(1 + i), Job{std::string("print ") + s.board + " " + s.label,
                                                 [&dir, s](Result& r) { r.print = measure_print(dir, s); }});
   }
   const size_t first_lathe_job = jobs.size();

@@ -67,6 +67,9 @@ struct PrintScenario {
   int layers;
   int segments;        // chords of a perimeter (radius 10 mm)
   double initial_c;    // the hot end at the start
+  const char* board = "m32";  // the image: avrmotion-<board>.elf
+  bool i3_limits = false;     // the file's machine-limits block (sim/slicer_file.h, i3_file_limits())
+  int flow_percent = 0;       // > 0: the file's M221 S<flow_percent>
 };
 const std::vector<PrintScenario>& print_scenarios();
 struct PrintFigures {
@@ -82,6 +85,9 @@ struct PrintFigures {
   double accel_mm_s2 = 0, rate_mm_s = 0;  // X's, as probed
   char enabled_at_end[8] = {};
   unsigned switch_closes = 0;  // X, Y, Z together
+  size_t held = 0;             // `held within the board's limit` lines (a file's limits the firmware clamped)
+  int progress = -1;           // the last M73 percent the firmware echoed (sim/print_watch.h)
+  char message[32] = {};       // the last M117 text it echoed
 };
 PrintFigures measure_print(const std::string& firmware_dir, const PrintScenario& s);
 void print_print(const std::vector<PrintFigures>& p);

@@ -22,6 +22,10 @@ std::string MachineLimits::describe() const {
                   a.steps_per_mm, a.max_rate_mm_s, a.accel_mm_s2);
     out += buf;
   }
+  if (print_accel > 0 || travel_accel > 0 || retract_accel > 0) {
+    std::snprintf(buf, sizeof buf, ", path acceleration P %g T %g R %g mm/s^2", print_accel, travel_accel, retract_accel);
+    out += buf;
+  }
   std::snprintf(buf, sizeof buf, ", junction deviation %g mm", junction_mm);
   return out + buf;
 }
@@ -46,6 +50,11 @@ void TimeEstimator::move(const std::vector<double>& d, double feed, bool rapid) 
     cruise = std::min(cruise, l_.axes[i].max_rate_mm_s / share);
     b.accel = std::min(b.accel, l_.axes[i].accel_mm_s2 / share);
   }
+  double e = 0;
+  for (size_t i = 0; i < n; ++i)
+    if (l_.axes[i].name == 'E') e = d[i];
+  const double cap = !b.path ? l_.retract_accel : e != 0 ? l_.print_accel : l_.travel_accel;
+  if (cap > 0) b.accel = std::min(b.accel, cap);
   if (l_.max_event_rate > 0) cruise = std::min(cruise, l_.max_event_rate * b.length / dominant_steps);
   b.cruise2 = cruise * cruise;
   b.max_entry2 = 0;
@@ -100,6 +109,8 @@ void TimeEstimator::plan() {
     entry2[i + 1] = std::min(entry2[i + 1], entry2[i] + 2 * b.accel * b.length);
   }
   for (size_t i = 0; i < n; ++i) {
+    for (size_t k = 0; k < mark_block_.size(); ++k)
+      if (mark_block_[k] == planned_ + i) mark_s_[k] = seconds_;
     const Block& b = pending_[i];
     const double v0 = std::sqrt(entry2[i]), v1 = std::sqrt(entry2[i + 1]);
     const double up = (b.cruise2 - entry2[i]) / (2 * b.accel), down = (b.cruise2 - entry2[i + 1]) / (2 * b.accel);
@@ -111,7 +122,19 @@ void TimeEstimator::plan() {
       seconds_ += (vp - v0) / b.accel + (vp - v1) / b.accel;
     }
   }
+  planned_ += n;
   pending_.clear();
+}
+
+size_t TimeEstimator::mark() {
+  mark_block_.push_back(moves_);
+  mark_s_.push_back(-1);
+  return mark_block_.size() - 1;
+}
+
+double TimeEstimator::at(size_t mark) {
+  plan();
+  return mark_block_[mark] >= planned_ ? seconds_ : mark_s_[mark];
 }
 
 }  // namespace sim

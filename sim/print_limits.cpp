@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "board_info.h"
 #include "machine.h"
 
 namespace sim {
@@ -47,6 +48,20 @@ MachineLimits probe_limits(const std::string& elf_path, double junction_mm) {
     limit.steps_per_mm = spmm;
     limit.max_rate_mm_s = rate / spmm;
     limit.accel_mm_s2 = accel / spmm;
+    limit.in_path = limit.name != 'E';
+    l.axes.push_back(limit);
+  }
+  return l;
+}
+
+MachineLimits board_limits(const std::string& elf_path, double junction_mm) {
+  const am::BoardDescriptor b = read_board_descriptor(elf_path);
+  MachineLimits l;
+  l.junction_mm = junction_mm;
+  for (uint8_t i = 0; i < b.axis_count; ++i) {
+    AxisLimit limit;
+    limit.name = b.axes[i].name;
+    limit.steps_per_mm = double(b.axes[i].steps_per_m) / 1000;
     limit.in_path = limit.name != 'E';
     l.axes.push_back(limit);
   }

@@ -16,6 +16,11 @@
 //   throws std::runtime_error. The extruder ('E') is not a path axis.
 //   junction_mm is the argument (grbl's default 0.01 mm: what the m32's
 //   firmware uses, docs/gcode.md; a slicer takes it from its profile).
+//
+// Contract of board_limits()
+//   The descriptor's axes and steps/mm alone (rates and accelerations 0),
+//   read without running the image: for a file whose machine-limits block
+//   sets every one of them (slicer_file.h, file_sets_all()).
 #pragma once
 #include <string>
 
@@ -24,5 +29,6 @@
 namespace sim {
 
 MachineLimits probe_limits(const std::string& elf_path, double junction_mm = 0.01);
+MachineLimits board_limits(const std::string& elf_path, double junction_mm = 0.01);
 
 }  // namespace sim

@@ -4,10 +4,70 @@
 #include <avr_ioport.h>
 #include <sim_avr.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <stdexcept>
 
 namespace sim {
+
+namespace {
+
+// The line the firmware printed just before the `ok` of response `r`: the
+// first `ok` after r's first byte went out (one line in flight; not r's
+// answer_cycle, which a host's line lost at a reset shifts by one in a
+// --pty run: the simulator pairs answers with lines in order).
+bool line_before_ok(const SerialHost& serial, const Response& r, std::string& line) {
+  const std::vector<std::string>& got = serial.received();
+  const std::vector<uint64_t>& cycles = serial.received_cycles();
+  for (size_t k = 1; k < got.size() && k < cycles.size(); ++k) {
+    if (cycles[k] <= r.sent_cycle || !SerialHost::is_ok(got[k])) continue;
+    line = got[k - 1];
+    return true;
+  }
+  return false;
+}
+
+// The echo line of the last answered line with `code` ("M73"; a host's
+// `N<n> ` before it as well) that `accept` takes.
+template <typename Accept>
+bool last_echo(const SerialHost& serial, const char* code, Accept accept) {
+  const std::vector<Response>& rs = serial.responses();
+  for (size_t i = rs.size(); i-- > 0;) {
+    std::string line = rs[i].line, echo;
+    if (line.size() > 1 && line[0] == 'N') line.erase(0, std::min(line.size(), line.find(' ') + 1));
+    const size_t n = std::char_traits<char>::length(code);
+    if (line.compare(0, n, code) != 0 || (line.size() > n && line[n] != ' '))
+      continue;
+    if (line_before_ok(serial, rs[i], echo) && echo.rfind("echo:", 0) == 0 && accept(echo.substr(5))) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+int last_progress(const SerialHost& serial) {
+  int percent = -1;
+  last_echo(serial, "M73", [&](const std::string& text) {
+    const std::string prefix = "Progress: ";
+    if (text.rfind(prefix, 0) != 0) return false;
+    size_t k = prefix.size(), digits = 0;
+    int p = 0;
+    while (k < text.size() && std::isdigit(static_cast<unsigned char>(text[k])) && digits < 4)
+      p = p * 10 + (text[k++] - '0'), ++digits;
+    if (!digits || k >= text.size() || text[k] != '%') return false;  // M73 R5's: an earlier one's
+    percent = p;
+    return true;
+  });
+  return percent;
+}
+
+bool last_message(const SerialHost& serial, std::string& text) {
+  return last_echo(serial, "M117", [&](const std::string& echo) {
+    text = echo;
+    return true;
+  });
+}
 
 PrintWatch::PrintWatch(Machine& m, const ThermalPlant* plant, const Endstops* switches)
     : m_(m), plant_(plant), switches_(switches) {

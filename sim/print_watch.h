@@ -18,6 +18,14 @@
 //     an output counts as disabled; the heater pin's level and its high
 //     fraction over the plant's last 100 ms log step; the firmware's
 //     setpoint as the plant logs it (its RAM, for information).
+//   And two things the firmware says, read from its lines (free functions
+//   below), each from the line the firmware printed just before the first
+//   `ok` after a code's line went out (one line in flight) (so an M117 whose text is `Progress: 5%` is no M73;
+//   a line a host numbered, `N<n> M117 ...*<sum>`, counts as well):
+//   last_progress(), the percent of the last M73's `echo:Progress: <P>%`
+//   (an M73 without P, whose echo has no percent, is passed over; -1: no
+//   such line); last_message(), the text of the last M117's `echo:<text>`,
+//   false when no M117 was answered so.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -27,6 +35,9 @@
 #include "thermal_plant.h"
 
 namespace sim {
+
+int last_progress(const SerialHost& serial);
+bool last_message(const SerialHost& serial, std::string& text);
 
 class PrintWatch {
  public:

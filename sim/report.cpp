@@ -154,6 +154,11 @@ void write_report(std::ostream& out, Machine& m, RunEnd end, const PtyStats* pty
       if (print->switches() && print->switches()->has(a.name))
         out << ", \"switch_closes_" << a.name << "\": " << print->switch_closes(a.name);
     }
+    // What the firmware said (print_watch.h): absent when it said nothing.
+    const int progress = last_progress(serial);
+    if (progress >= 0) out << ", \"progress\": " << progress;
+    std::string message;
+    if (last_message(serial, message)) out << ", \"message\": " << quoted(message);
     out << "},\n";
   }
   if (wall_seconds >= 0) {

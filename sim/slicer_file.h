@@ -12,14 +12,26 @@
 //   (a lift and a park; M400 if `end_m400`; M104 S0, M107, G28 X0, M84);
 //   PrusaSlicer's closing comments with
 //   `; estimated printing time (normal mode) = 1h 2m 3s`.
+//   With `machine_limits` (PrusaSlicer's "emit machine limits to G-code"),
+//   a block right after the header: M201 X Y Z E, M203 X Y Z E, M204 P R T,
+//   M205 X Y Z E (classic jerk) and M205 J, each word where FileLimits has
+//   it (> 0). With `progress`: M73 P<p> R<min> after the header,
+//   at each layer change and after the park (P the estimate's share of the
+//   timed moves before that line, whole percent rounded down; R the rest in
+//   whole minutes, rounded up); M117 `Layer <n> of <N>` at each layer
+//   change and `Print done` at the end. With flow_percent > 0: M220 S100 and
+//   M221 S<flow> before the first timed move.
 //   Coordinates are written with 3 decimals (whole micrometres) and E with
 //   5, absolute (M82), so the expected machine positions are exact integers
 //   (SlicerFile's, below); no feed above the limits' top rates except the
 //   start's G1 Z5 F5000 (the firmware holds it and says so).
 //   The estimate: TimeEstimator (print_estimate.h) over the file's moves
 //   from the one after M109 to the park (the part a slicer can time: the
-//   heat-up and homing it cannot), with `limits`; the file's comment says
-//   it in PrusaSlicer's format, estimate_s holds it unrounded.
+//   heat-up and homing it cannot), with `limits` where the file's block sets
+//   nothing and the file's figures where it does (apply_file_limits()); the
+//   file's comment says it in PrusaSlicer's format, estimate_s holds it
+//   unrounded. e_steps follows the firmware's M221 (each move's E steps
+//   scaled, half away from zero, from the machine's count).
 #pragma once
 #include <cstdint>
 #include <string>
@@ -28,6 +40,22 @@
 #include "print_estimate.h"
 
 namespace sim {
+
+// A file's machine limits (0: not written). Axes X Y Z E in that order.
+struct FileLimits {
+  double accel[4] = {};         // M201, mm/s^2
+  double feed[4] = {};          // M203, mm/s
+  double print_accel = 0, retract_accel = 0, travel_accel = 0;  // M204 P R T, mm/s^2
+  double jerk[4] = {};          // M205 X Y Z E, mm/s (written; this planner has no jerk)
+  double junction_mm = 0;       // M205 J
+};
+// An i3-style machine's (the printer profile, docs/simulator.md).
+FileLimits i3_file_limits();
+// `limits` with what `file` sets in its place.
+MachineLimits apply_file_limits(const MachineLimits& limits, const FileLimits& file);
+// True when `file` sets every axis's rate and acceleration of `limits`'s
+// axes: probing the image is then needed for nothing but steps/mm.
+bool file_sets_all(const MachineLimits& limits, const FileLimits& file);
 
 struct SlicerOptions {
   int layers = 3;
@@ -39,11 +67,17 @@ struct SlicerOptions {
   int hotend_c = 200;
   double perimeter_feed = 1800, infill_feed = 2400, travel_feed = 2400;  // mm/min
   bool end_m400 = false;            // M400 after the park (the bench times the print up to its answer)
+  bool machine_limits = false;      // the M201..M205 block, from `file_limits`
+  FileLimits file_limits;
+  bool progress = true;             // M73 and M117 lines
+  int flow_percent = 0;             // > 0: M220 S100 and M221 S<flow_percent>
 };
 
 struct SlicerFile {
   std::vector<std::string> lines;   // comments included (a host drops them)
   double estimate_s = 0;            // the estimator's time for the moves after M109 up to the park
+  int last_progress = -1;           // the last M73's P (-1: none written)
+  std::string last_message;         // the last M117's text ("" : none)
   size_t moves = 0;                 // the moves it timed
   // The program position at the end of the print (before the end's G28 X0),
   // X Y Z in micrometres; the extruder's machine position in its steps

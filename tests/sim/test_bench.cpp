@@ -200,7 +200,7 @@ TEST(Bench, ParallelPageHasEveryFigureAndTheDocsPageIsCurrent) {
     const std::vector<std::string> c = cells(line);
     if (c.size() == 14 && c[1].size() && std::isdigit(static_cast<unsigned char>(c[1][0]))) print_page.push_back(c);
   }
-  ASSERT_EQ(print_out.size(), 2u) << r.out;  // sim/bench_print.cpp's files: coarse, fine
+  ASSERT_EQ(print_out.size(), 3u) << r.out;  // sim/bench_print.cpp's files: coarse, fine, i3
   EXPECT_EQ(print_page, print_out) << page;
   for (const std::vector<std::string>& p : print_out) {
     EXPECT_EQ(p[4], p[5]);    // lines, answered: every line answered

@@ -6,6 +6,9 @@
 // positions it promises, re-read from its own lines.
 #include <gtest/gtest.h>
 
+#include <climits>
+#include <cstdio>
+
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -90,7 +93,8 @@ TEST(PrintEstimate, TheFileIsPrusaSlicersShapeAndKeepsItsPromises) {
     if (!c.empty() && c[0] != ';') cmd.push_back(c);
   }
   ASSERT_EQ(cmd.size(), f.command_lines());
-  const std::vector<std::string> start = {"M107", "M104 S200", "G28", "G1 Z5 F5000", "M109 S200",
+  const std::vector<std::string> start = {"M73 P0 R" + std::to_string(long(std::ceil(f.estimate_s / 60))),
+                                          "M107", "M104 S200", "G28", "G1 Z5 F5000", "M109 S200",
                                           "G21",  "G90",       "M82", "G92 E0"};
   ASSERT_GE(cmd.size(), start.size() + 4);
   EXPECT_EQ(std::vector<std::string>(cmd.begin(), cmd.begin() + long(start.size())), start);
@@ -142,4 +146,50 @@ TEST(PrintEstimate, TheFileIsPrusaSlicersShapeAndKeepsItsPromises) {
   EXPECT_EQ(e_steps, f.e_steps);
   EXPECT_EQ(f.z_um, o.layers * o.layer_um + 1000);  // the last layer and the lift
   EXPECT_GT(f.estimate_s, 0);
+
+  // Progress: M73 at the start, at each layer, after the park, P never
+  // going back and R never up; M117 at each layer and at the end.
+  int last_p = -1, m73 = 0, m117 = 0;
+  long last_r = LONG_MAX;
+  for (const std::string& c : cmd) {
+    m117 += c.rfind("M117 ", 0) == 0;
+    if (c.rfind("M73 P", 0) != 0) continue;
+    ++m73;
+    int p = -1;
+    long r = -1;
+    ASSERT_EQ(std::sscanf(c.c_str(), "M73 P%d R%ld", &p, &r), 2) << c;
+    EXPECT_GE(p, last_p) << c;
+    EXPECT_LE(r, last_r) << c;
+    last_p = p, last_r = r;
+  }
+  EXPECT_EQ(m73, o.layers + 2);
+  EXPECT_EQ(m117, o.layers + 1);
+  EXPECT_EQ(last_p, 100);
+  EXPECT_EQ(last_r, 0);
+  EXPECT_EQ(f.last_progress, 100);
+  EXPECT_EQ(f.last_message, "Print done");
+}
+
+// The machine-limits block: PrusaSlicer's lines, and an estimate that uses
+// them (a slower file's limits make a longer estimate; M204's caps count).
+TEST(PrintEstimate, TheFileWritesItsMachineLimitsAndTimesWithThem) {
+  sim::SlicerOptions o;
+  o.layers = 2;
+  o.machine_limits = true;
+  o.file_limits = sim::i3_file_limits();
+  const sim::SlicerFile f = sim::write_slicer_file(four_axes(), o);
+  std::vector<std::string> block;
+  for (const std::string& l : f.lines)
+    if (l.rfind("M20", 0) == 0) block.push_back(l.substr(0, l.find(" ;")));
+  EXPECT_EQ(block, (std::vector<std::string>{"M201 X1000 Y1000 Z200 E5000", "M203 X200 Y200 Z12 E120",
+                                              "M204 P1000 R1000 T1500", "M205 X8 Y8 Z0.4 E4.5", "M205 J0.02"}));
+  EXPECT_TRUE(sim::file_sets_all(four_axes(), o.file_limits));
+  sim::SlicerOptions slower = o;
+  slower.file_limits.print_accel = 100;  // the perimeters and the infill
+  const double slow = sim::write_slicer_file(four_axes(), slower).estimate_s;
+  EXPECT_GT(slow, f.estimate_s * 1.2) << f.estimate_s;
+  sim::SlicerOptions none = o;
+  none.machine_limits = false;  // four_axes()'s own limits
+  EXPECT_NE(sim::write_slicer_file(four_axes(), none).estimate_s, f.estimate_s);
+  std::printf("estimates: %.3f s with the i3 block, %.3f s with M204 P100\n", f.estimate_s, slow);
 }

@@ -9,7 +9,8 @@
 // target before the first extrusion and off at the end, every switch was
 // reached (two homings of X, one of Y and Z), every driver disabled after
 // M84; every line got one `ok` and no error, and every axis ended exactly
-// where the homing and the file put it.
+// where the homing and the file put it; the report's print.progress and
+// print.message are the file's last M73 P and M117 text.
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -91,6 +92,10 @@ TEST(Printcore, AHeatedSlicerPrintRunsStartToFinishAndEndsCold) {
   EXPECT_EQ(report_number(json, "print", "target_c_at_end"), 0) << json;
   // The motors: every driver's enable pin at its inactive level after M84.
   EXPECT_EQ(report_string(json, "drivers_enabled_at_end"), "\"\"") << json;
+  // What the firmware echoed to the last M73 and M117 (printcore numbers
+  // the lines: `N<n> M117 Print done*<sum>`).
+  EXPECT_EQ(report_number(json, "print", "progress"), print.last_progress) << json;
+  EXPECT_EQ(report_string(json, "message"), "\"" + print.last_message + "\"") << json;
   // The homing: each G28 closes a switch twice (the seek, or the switch
   // closed at the start, and the locate); X homes at the start and at the end.
   EXPECT_EQ(report_number(json, "print", "switch_closes_X"), 4) << json;
