@@ -1,5 +1,6 @@
 #include "axis_decoder.h"
 
+#include <algorithm>
 #include <cstddef>
 
 #include "../core/motor/shield_wiring.h"
@@ -57,6 +58,25 @@ bool Latch595Model::on_enable(bool level) {
   const bool changed = enabled != output_enabled_;
   output_enabled_ = enabled;
   return changed;
+}
+
+int64_t position_at(const AxisTrace& axis, uint64_t cycle) {
+  const auto it = std::upper_bound(axis.step_cycles.begin(), axis.step_cycles.end(), cycle);
+  int64_t p = 0;
+  for (auto k = axis.step_cycles.begin(); k != it; ++k) p += axis.step_deltas[size_t(k - axis.step_cycles.begin())];
+  return p;
+}
+
+bool motion_span(const std::vector<AxisTrace>& axes, uint64_t from, uint64_t to, uint64_t& first, uint64_t& last) {
+  first = UINT64_MAX;
+  last = 0;
+  for (const AxisTrace& a : axes) {
+    for (const uint64_t c : a.step_cycles) {
+      if (c >= from && c < first) first = c;
+      if (c <= to && c > last) last = c;
+    }
+  }
+  return first < last;
 }
 
 }  // namespace sim

@@ -38,6 +38,12 @@ struct AxisTrace {
   }
 };
 
+// The axis's position at a cycle: the sum of its steps at or before it.
+int64_t position_at(const AxisTrace& axis, uint64_t cycle);
+// The first and the last step of any of `axes` within [from, to] (cycles);
+// false when none stepped there.
+bool motion_span(const std::vector<AxisTrace>& axes, uint64_t from, uint64_t to, uint64_t& first, uint64_t& last);
+
 class StepDirDecoder {
  public:
   explicit StepDirDecoder(AxisTrace* trace) : trace_(trace) {}

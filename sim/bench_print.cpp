@@ -26,18 +26,6 @@ namespace bench {
 
 namespace {
 
-int64_t position_at(const sim::AxisTrace& a, uint64_t cycle) {
-  int64_t p = 0;
-  for (size_t i = 0; i < a.step_cycles.size() && a.step_cycles[i] <= cycle; ++i) p += a.step_deltas[i];
-  return p;
-}
-
-std::string command_of(const std::string& line) {
-  std::string s = line.substr(0, line.find(';'));
-  while (!s.empty() && s.back() == ' ') s.pop_back();
-  return s;
-}
-
 }  // namespace
 
 // The coarse print: 1.3 mm chords, heated from cold. The fine one: 0.26 mm
@@ -77,7 +65,7 @@ PrintFigures measure_print(const std::string& dir, const PrintScenario& s) {
   sim::Endstops switches(m);
   sim::PrintWatch watch(m, &plant, &switches);
   for (const std::string& l : file.lines) {
-    const std::string c = command_of(l);
+    const std::string c = sim::command_of(l);
     if (!c.empty()) m.serial().add_line(c);
   }
   p.lines = m.serial().lines_pending();
@@ -100,21 +88,15 @@ PrintFigures measure_print(const std::string& dir, const PrintScenario& s) {
     if (r.line == "M400" && !parked) parked = r.answer_cycle;
   }
   if (end != sim::RunEnd::done || !homed || !heated || !parked) return p;
-  uint64_t first = UINT64_MAX, last = 0;
-  for (const sim::AxisTrace& a : m.axes()) {
-    for (const uint64_t c : a.step_cycles) {
-      if (c >= heated && c < first) first = c;
-      if (c <= parked && c > last) last = c;
-    }
-  }
-  if (first >= last) return p;
+  uint64_t first, last;
+  if (!sim::motion_span(m.axes(), heated, parked, first, last)) return p;
   p.print_s = double(last - first) / f;
   const sim::AxisTrace *x = m.axis('X'), *y = m.axis('Y'), *z = m.axis('Z'), *e = m.axis('E');
   const auto steps = [&](char name, int64_t um) {
     return sim::round_half_away(um * int64_t(limits.axes[size_t(limits.index(name))].steps_per_mm * 1000), 1000000);
   };
-  p.exact = x->position == position_at(*x, homed) && y->position == position_at(*y, homed) + steps('Y', file.y_um) &&
-            z->position == position_at(*z, homed) + steps('Z', file.z_um) && e->position == file.e_steps;
+  p.exact = x->position == sim::position_at(*x, homed) && y->position == sim::position_at(*y, homed) + steps('Y', file.y_um) &&
+            z->position == sim::position_at(*z, homed) + steps('Z', file.z_um) && e->position == file.e_steps;
   for (const std::string& l : m.serial().messages()) p.held += l.find(" held within the board's limit") != std::string::npos;
   p.progress = sim::last_progress(m.serial());
   std::string message;

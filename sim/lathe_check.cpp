@@ -25,13 +25,6 @@ int64_t target_steps(const ThreadSpec& t, int64_t s) {
   return int64_t(floor_div(t.right_hand ? -num : num, den));
 }
 
-int64_t position_at(const AxisTrace& axis, uint64_t cycle) {
-  const auto it = std::upper_bound(axis.step_cycles.begin(), axis.step_cycles.end(), cycle);
-  int64_t p = 0;
-  for (auto k = axis.step_cycles.begin(); k != it; ++k) p += axis.step_deltas[size_t(k - axis.step_cycles.begin())];
-  return p;
-}
-
 namespace {
 
 // position_at() for many cycles: the running sums once.

@@ -66,7 +66,5 @@ struct PulseTiming {
 };
 PulseTiming pulse_timing(const std::vector<PinEdge>& step, const std::vector<PinEdge>& dir);
 
-// The axis's position at a cycle: the sum of its steps at or before it.
-int64_t position_at(const AxisTrace& axis, uint64_t cycle);
 
 }  // namespace sim

@@ -321,4 +321,10 @@ SlicerFile write_slicer_file(const MachineLimits& probed, const SlicerOptions& o
   return f;
 }
 
+std::string command_of(const std::string& line) {
+  std::string s = line.substr(0, line.find(';'));
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s;
+}
+
 }  // namespace sim

@@ -92,6 +92,9 @@ SlicerFile write_slicer_file(const MachineLimits& limits, const SlicerOptions& o
 
 // "1h 2m 3s", "2m 3s", "45s" (PrusaSlicer's format; whole seconds, rounded).
 std::string slicer_duration(double seconds);
+// What a line of the file sends: the text before its `;` comment, trailing
+// blanks dropped (empty for a comment line).
+std::string command_of(const std::string& line);
 
 // Half away from zero, as the firmware rounds a program position to steps.
 int64_t round_half_away(int64_t v, int64_t d);

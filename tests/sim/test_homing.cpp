@@ -77,12 +77,6 @@ long reported(sim::Machine& m, char a) {
   return 0;
 }
 
-// Where the pins had put axis `a` by `cycle`.
-int64_t position_at(const sim::AxisTrace& a, uint64_t cycle) {
-  int64_t p = 0;
-  for (size_t i = 0; i < a.step_cycles.size() && a.step_cycles[i] <= cycle; ++i) p += a.step_deltas[i];
-  return p;
-}
 
 }  // namespace
 
@@ -208,7 +202,7 @@ TEST(Homing, ASwitchThatNeverClosesRaisesTheAlarm) {
   });
   EXPECT_EQ(p.answer(0), "error: homing: endstop not found");
   // The whole seek, then the error.
-  EXPECT_EQ(position_at(*p.m().axis('X'), p.m().serial().responses().at(0).answer_cycle), -9000);
+  EXPECT_EQ(sim::position_at(*p.m().axis('X'), p.m().serial().responses().at(0).answer_cycle), -9000);
   EXPECT_EQ(p.answer(1), "error: alarm (hard limit, failed homing, reset in motion): M999 or $X unlocks");
   EXPECT_EQ(p.answer(2), "error: alarm (hard limit, failed homing, reset in motion): M999 or $X unlocks");
   EXPECT_EQ(p.answer(3), "error: alarm (hard limit, failed homing, reset in motion): M999 or $X unlocks");

@@ -15,10 +15,8 @@ namespace {
 
 // Steps on the pins up to `cycle`, from the decoded edges (full steps for a
 // coil-driven axis, whose decoder counts half steps).
-double position_at(const sim::AxisTrace& a, uint64_t cycle) {
-  int64_t p = 0;
-  for (size_t k = 0; k < a.step_cycles.size() && a.step_cycles[k] <= cycle; ++k) p += a.step_deltas[k];
-  return double(p) / a.units_per_step;
+double steps_at(const sim::AxisTrace& a, uint64_t cycle) {
+  return double(sim::position_at(a, cycle)) / a.units_per_step;
 }
 
 // The "Count X:<n> ..." numbers of an M114 report, in the board's order.
@@ -50,10 +48,10 @@ int check_reports(const std::string& image, const std::vector<std::string>& line
     bool inside = false;
     for (size_t i = 0; i < axes.size(); ++i) {
       const sim::AxisTrace& a = *m->axis(axes[i]);
-      const double lo = position_at(a, x.sent_cycle), hi = position_at(a, x.answer_cycle);
+      const double lo = steps_at(a, x.sent_cycle), hi = steps_at(a, x.answer_cycle);
       EXPECT_GE(c[i], std::min(lo, hi)) << axes[i] << " in " << msgs[report - 1];
       EXPECT_LE(c[i], std::max(lo, hi)) << axes[i] << " in " << msgs[report - 1];
-      inside = inside || (c[i] != position_at(a, UINT64_MAX) && c[i] != 0);
+      inside = inside || (c[i] != steps_at(a, UINT64_MAX) && c[i] != 0);
     }
     moving += inside;
   }

@@ -31,18 +31,6 @@
 
 namespace {
 
-int64_t position_at(const sim::AxisTrace& a, uint64_t cycle) {
-  int64_t p = 0;
-  for (size_t i = 0; i < a.step_cycles.size() && a.step_cycles[i] <= cycle; ++i) p += a.step_deltas[i];
-  return p;
-}
-
-std::string command_of(const std::string& line) {
-  std::string s = line.substr(0, line.find(';'));
-  while (!s.empty() && s.back() == ' ') s.pop_back();
-  return s;
-}
-
 std::string report_of(sim::Machine& m, const sim::ThermalPlant& plant, const sim::PrintWatch& watch) {
   std::ostringstream out;
   sim::write_report(out, m, sim::RunEnd::done, nullptr, &plant, -1, &watch);
@@ -83,7 +71,7 @@ TEST(PrintI3, AFileWithAnI3sLimitsPrintsExactlyNearItsEstimate) {
   sim::Endstops switches(m);
   sim::PrintWatch watch(m, &plant, &switches);
   for (const std::string& l : file.lines)
-    if (!command_of(l).empty()) m.serial().add_line(command_of(l));
+    if (!sim::command_of(l).empty()) m.serial().add_line(sim::command_of(l));
   const size_t lines = m.serial().lines_pending();
   ASSERT_EQ(m.run_script(uint64_t(m.f_cpu()) * 300), sim::RunEnd::done);
 
@@ -103,26 +91,20 @@ TEST(PrintI3, AFileWithAnI3sLimitsPrintsExactlyNearItsEstimate) {
 
   // The homing: each axis 1 mm above its switch (at decoded 0).
   const sim::AxisTrace &x = *m.axis('X'), &y = *m.axis('Y'), &z = *m.axis('Z'), &e = *m.axis('E');
-  EXPECT_EQ(position_at(x, homed), 80);
-  EXPECT_EQ(position_at(y, homed), 80);
-  EXPECT_EQ(position_at(z, homed), 400);
+  EXPECT_EQ(sim::position_at(x, homed), 80);
+  EXPECT_EQ(sim::position_at(y, homed), 80);
+  EXPECT_EQ(sim::position_at(z, homed), 400);
   const auto steps = [&](char name, int64_t um) {
     return sim::round_half_away(um * int64_t(board.axes[size_t(board.index(name))].steps_per_mm * 1000), 1000000);
   };
-  EXPECT_EQ(x.position, position_at(x, homed));  // G28 X0 at the end
-  EXPECT_EQ(y.position, position_at(y, homed) + steps('Y', file.y_um));
-  EXPECT_EQ(z.position, position_at(z, homed) + steps('Z', file.z_um));
+  EXPECT_EQ(x.position, sim::position_at(x, homed));  // G28 X0 at the end
+  EXPECT_EQ(y.position, sim::position_at(y, homed) + steps('Y', file.y_um));
+  EXPECT_EQ(z.position, sim::position_at(z, homed) + steps('Z', file.z_um));
   EXPECT_EQ(e.position, file.e_steps);
 
   // The time: from the first step after M109's answer to the last before the M400's.
-  uint64_t first = UINT64_MAX, last = 0;
-  for (const sim::AxisTrace& a : m.axes()) {
-    for (const uint64_t c : a.step_cycles) {
-      if (c >= heated && c < first) first = c;
-      if (c <= parked && c > last) last = c;
-    }
-  }
-  ASSERT_LT(first, last);
+  uint64_t first, last;
+  ASSERT_TRUE(sim::motion_span(m.axes(), heated, parked, first, last));
   const double print_s = double(last - first) / m.f_cpu(), ratio = print_s / file.estimate_s;
   std::printf("i3 print: %zu lines, %.3f s against the estimate's %.3f s: ratio %.3f; E %lld steps (%lld at 100 %%)\n",
               lines, print_s, file.estimate_s, ratio, (long long)file.e_steps, (long long)unflowed);

@@ -110,14 +110,8 @@ TEST(PrintRing, TheFineFilesRingRunsShortOfBlocks) {
     sum += s.waiting;
   }
   ASSERT_GT(n, 1000u);
-  uint64_t first = UINT64_MAX, last = 0;
-  for (const sim::AxisTrace& a : m.axes()) {
-    for (const uint64_t c : a.step_cycles) {
-      if (c >= heated && c < first) first = c;
-      if (c <= parked && c > last) last = c;
-    }
-  }
-  ASSERT_LT(first, last);
+  uint64_t first, last;
+  ASSERT_TRUE(sim::motion_span(m.axes(), heated, parked, first, last));
   size_t counted = 0;
   for (int k = 0; k <= kRingBlocks; ++k) counted += size_t(count[k]);
   EXPECT_EQ(counted, n);
