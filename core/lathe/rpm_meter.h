@@ -6,7 +6,7 @@
 //   sample(count, counts_per_turn) once every kSampleMs; rpm() is then
 //   (count - the count kSamples samples ago) x 60000 / (512 counts_per_turn),
 //   truncated toward zero, negative while the spindle turns backwards.
-//   reset(count) forgets the history (a new encoder: every old sample reads
+//   reset(count) forgets the history (another encoder: every old sample reads
 //   as `count`, so rpm() reads 0 until the spindle has moved). Integer only;
 //   host and avr-g++. Limit: at most 1145324 counts in a window (2^31 /
 //   1875), 2.2 million counts/s, far above the 50000 counts/s the follower

@@ -71,6 +71,22 @@ void percent(const Command& c) {
 
 }  // namespace
 
+// M117 <text> (a printer's): the text up to a ';' comment, as an info line
+// (`echo:<text>`, grbl `[MSG:<text>]`), and ok; true when the line is one.
+// Its own reading: the parser would take the text for words.
+bool message(const char* line) {
+  while (*line == ' ' || *line == '\t') ++line;
+  if ((*line & ~0x20) != 'M' || line[1] != '1' || line[2] != '1' || line[3] != '7') return false;
+  line += 4;
+  if (*line != ' ' && *line != '\t' && *line != '\0' && *line != ';') return false;
+  if (*line == ' ' || *line == '\t') ++line;
+  reply::info_begin();
+  while (*line && *line != ';') hal::uart::write(uint8_t(*line++));
+  reply::info_end();
+  reply::ok();
+  return true;
+}
+
 void run(const Command& c) {
   switch (c.code) {
     case am::GcodeCode::m73:

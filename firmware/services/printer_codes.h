@@ -22,7 +22,9 @@
 //                  without S `echo:FR:<p>%`
 //     M221 [S]     flow, percent of every later move's E steps; without S
 //                  `echo:E0 Flow: <p>%`
-//   M117's text is gcode.cpp's (the parser would read it as words).
+//   message(line) answers an `M117 <text>` line whole (the text up to a
+//   `;` comment as an info line, then ok) and says whether it was one: the
+//   G-code side asks before the parser, which would read the text as words.
 #pragma once
 #include "../../core/text/gcode_interpreter.h"
 #include "../board.h"
@@ -30,5 +32,6 @@
 namespace printer_codes {
 
 void run(const am::GcodePrinterCommand<board::Axes::count>& command);
+bool message(const char* line);
 
 }  // namespace printer_codes

@@ -265,22 +265,6 @@ bool home() {
   return true;
 }
 
-// M117 <text> (a printer's): the text up to a ';' comment, as an info line
-// (`echo:<text>`, grbl `[MSG:<text>]`), and ok; true when the line is one.
-// Its own reading: the parser would take the text for words.
-bool message(const char* line) {
-  while (*line == ' ' || *line == '\t') ++line;
-  if ((*line & ~0x20) != 'M' || line[1] != '1' || line[2] != '1' || line[3] != '7') return false;
-  line += 4;
-  if (*line != ' ' && *line != '\t' && *line != '\0' && *line != ';') return false;
-  if (*line == ' ' || *line == '\t') ++line;
-  reply::info_begin();
-  while (*line && *line != ';') hal::uart::write(uint8_t(*line++));
-  reply::info_end();
-  reply::ok();
-  return true;
-}
-
 bool moves(am::GcodeActionKind kind) {
   return kind == am::GcodeActionKind::move || kind == am::GcodeActionKind::arc || kind == am::GcodeActionKind::home;
 }
@@ -304,7 +288,7 @@ void refuse(am::GcodeError e) {
 }
 
 bool accept(const char* line) {
-  if (board::kPrinterCodes && message(line)) return false;
+  if (board::kPrinterCodes && printer_codes::message(line)) return false;
   const am::GcodeState<kAxes> before = interpreter().state();
   for (uint8_t i = 0; i < kAxes; ++i) {
     coord_before[i] = before.axis[i].coord;
