@@ -52,8 +52,12 @@ constexpr HomingSettings<1> kHomingSettings = {};
 // Only for boards whose axes are all step/dir (one position unit a step).
 constexpr bool kSettings = false;
 // The lathe program's operator panel (firmware/apps/lathe/operator.h) in
-// place of its UART front end.
+// place of its UART front end; with kApproximateRatios, a thread whose ratio
+// the follower cannot hold exactly is cut at the nearest one it can (the
+// continued fraction of core/lathe/ratio.h, about 1.6 KB) and its error
+// shown, instead of refused.
 constexpr bool kOperatorPanel = false;
+constexpr bool kApproximateRatios = false;
 // A lathe's spindle encoder and limit switch (firmware/boards/m16-lathe.h),
 // named in the descriptor for the simulator.
 constexpr bool kSpindleEncoder = false;
@@ -61,7 +65,8 @@ struct SpindlePins;  // A, B, Index, Limit: only with kSpindleEncoder
 // The lathe's leadscrew driven by a DC servo (firmware/boards/m16-servo.h)
 // instead of a stepper; its pins named in the descriptor for the simulator.
 constexpr bool kServoLeadscrew = false;
-struct ServoPins;  // Pwm, In1, In2, Encoder: only with kServoLeadscrew
+struct ServoPins;   // Pwm, In1, In2, Encoder: only with kServoLeadscrew
+struct ServoMotor;  // kPulses, kGearbox, kGains: only with kServoLeadscrew
 }  // namespace board_defaults
 namespace board {
 using namespace board_defaults;

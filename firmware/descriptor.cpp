@@ -74,7 +74,7 @@ template <typename... Axes>
 struct Describe<AxisSet<Axes...>> {
   static_assert(sizeof...(Axes) <= am::kMaxAxes, "the descriptor holds six axes");
   static constexpr am::BoardDescriptor make() {
-    return am::BoardDescriptor{{'A', 'M', 'B', '3'}, AVRMOTION_BOARD_NAME, AVRMOTION_MCU_NAME,
+    return am::BoardDescriptor{{'A', 'M', 'B', '4'}, AVRMOTION_BOARD_NAME, AVRMOTION_MCU_NAME,
                                F_CPU, board::kBaud, uint8_t(sizeof...(Axes)), Heater::pwm, Heater::adc, Heater::ok,
                                uint8_t((board::kGcode ? am::kProgramGcode : 0) |
                                        (board::kCommands ? am::kProgramCommands : 0) |

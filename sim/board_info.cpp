@@ -35,7 +35,7 @@ am::BoardDescriptor read_board_descriptor(const std::string& elf_path) {
   if (elf) elf_end(elf);
   close(fd);
   if (!found) throw std::runtime_error(elf_path + ": no .avrmotion_board section (not an avrmotion image?)");
-  if (std::memcmp(out.magic, "AMB3", 4) != 0) throw std::runtime_error(elf_path + ": unknown board descriptor version");
+  if (std::memcmp(out.magic, "AMB4", 4) != 0) throw std::runtime_error(elf_path + ": unknown board descriptor version");
   out.board[sizeof out.board - 1] = 0;
   out.mcu[sizeof out.mcu - 1] = 0;
   if (out.axis_count > am::kMaxAxes) throw std::runtime_error(elf_path + ": corrupt board descriptor");

@@ -45,8 +45,8 @@ constexpr uint8_t kMaxAxes = 6;
 constexpr uint8_t kProgramGcode = 1, kProgramCommands = 2, kProgramRealtime = 4;
 
 struct BoardDescriptor {
-  char magic[4];          // "AMB3"
-  char board[12];         // NUL-terminated
+  char magic[4];          // "AMB4"
+  char board[16];         // NUL-terminated
   char mcu[12];           // simavr's part name, NUL-terminated
   uint32_t f_cpu;
   uint32_t baud;
@@ -69,6 +69,6 @@ struct BoardDescriptor {
 };
 
 static_assert(sizeof(AxisDescriptor) == 12, "descriptor layout must match on host and AVR");
-static_assert(sizeof(BoardDescriptor) == 124, "descriptor layout must match on host and AVR");
+static_assert(sizeof(BoardDescriptor) == 128, "descriptor layout must match on host and AVR");
 
 }  // namespace am

@@ -14,8 +14,9 @@
 //   must not reverse while it is being counted).
 //   Gains (ServoGains) are in duty counts per servo count (Kp), per servo
 //   count and second (Ki), duty s per servo count (Kd), all x 1000; Ts in
-//   microseconds. servo_coefficients() converts them (constexpr, once);
-//   update() is integer only.
+//   microseconds. servo_coefficients() converts them (constexpr: a board's
+//   gains at compile time, the lathe panel's settings at run time, once per
+//   change); update() is integer only.
 //   - Anti-windup: the integral does not grow while the output is saturated
 //     in the direction of the error (conditional integration: at kMaxDuty
 //     with e > 0, at 0 with e < 0), and it is kept within +-kMaxDuty duty on
@@ -41,14 +42,18 @@
 
 namespace am {
 
+// The sample period from which every Kd up to 4 duty s per count is
+// within the range of Kd / Ts (the lathe's settings rely on it).
+constexpr uint32_t kServoMinSampleUs = 1000;
+
 struct ServoGains {
   uint32_t kp_milli;  // Kp x 1000, duty per count
   uint32_t ki_milli;  // Ki x 1000, duty per (count s)
   uint32_t kd_milli;  // Kd x 1000, duty s per count
 };
 
-// The gains as update()'s coefficients, computed once (constexpr: a board's
-// gains cost no 64-bit code on the AVR). ok is false outside the ranges.
+// The gains as update()'s coefficients, computed once per change. ok is
+// false outside the ranges.
 struct ServoCoefficients {
   int32_t kp, ki, kd;
   // Input clamps: |kp e|, |kd delta e| <= 2^27 (2048 duty, twice full
@@ -62,24 +67,29 @@ constexpr int32_t servo_input_limit(int32_t k, int32_t term) { return k > 0 ? te
 constexpr ServoCoefficients servo_coefficients(const ServoGains& g, uint32_t period_us) {
   // Kd / Ts in duty per count, x 1000.
   const uint64_t kd_per_sample_milli = period_us ? (uint64_t(g.kd_milli) * 1000000ul + period_us / 2) / period_us : 0;
-  const bool ok = period_us >= 100 && period_us <= 65535 && g.kp_milli <= 255000ul && g.ki_milli <= 2000000ul &&
-                  kd_per_sample_milli <= 4000000ul;
+  if (period_us < 100 || period_us > 65535 || g.kp_milli > 255000ul || g.ki_milli > 2000000ul ||
+      kd_per_sample_milli > 4000000ul)
+    return ServoCoefficients{0, 0, 0, 0, 0, 0, false};
   // duty/count -> (duty/2^8)/(count/2^8): x 256 / 1000; the product with e
   // (count/2^8) is duty/2^16. Ki Ts in duty per count per sample x 2^16: the
-  // product with e (count/2^8) >> 8 is duty/2^16.
-  const int32_t kp = int32_t((uint64_t(g.kp_milli) * 256 + 500) / 1000);
-  const int32_t ki = int32_t((uint64_t(g.ki_milli) * period_us * 65536 / 1000 + 500000) / 1000000);
-  const int32_t kd = int32_t((kd_per_sample_milli * 256 + 500) / 1000);
+  // product with e (count/2^8) >> 8 is duty/2^16; rounded as
+  // floor((floor(ki Ts 2^16 / 1000) + 500000) / 10^6), in one division. The
+  // rest is 32-bit within the ranges: a gain set at run time (the lathe
+  // panel's settings) costs the AVR two 64-bit divisions.
+  const int32_t kp = int32_t((g.kp_milli * 256 + 500) / 1000);
+  const int32_t ki = int32_t(((uint64_t(g.ki_milli) * period_us << 16) + 500000000ul) / 1000000000ul);
+  const int32_t kd = int32_t((uint32_t(kd_per_sample_milli) * 256 + 500) / 1000);
   return ServoCoefficients{kp, ki, kd, servo_input_limit(kp, int32_t(1) << 27), servo_input_limit(ki, int32_t(1) << 30),
-                           servo_input_limit(kd, int32_t(1) << 27), ok};
+                           servo_input_limit(kd, int32_t(1) << 27), true};
 }
 
 class ServoPid {
  public:
   static constexpr uint16_t kMaxDuty = 1023;
 
-  // Takes the coefficients (false, and the old ones kept, when !c.ok).
-  bool set(const ServoCoefficients& c) {
+  // Takes the coefficients (false, and the old ones kept, when !c.ok). Out
+  // of line: inlined, avr-gcc copied the whole controller through the stack.
+  __attribute__((noinline)) bool set(const ServoCoefficients& c) {
     if (!c.ok) return false;
     c_ = c;
     reset();

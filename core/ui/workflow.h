@@ -23,9 +23,12 @@
 //   hand       "1Right 2Left"
 //   starts     a thread's starts, one key 1..8 (a feed has one and skips it)
 //   length     mm with 2 decimals, 0 = until stopped (D or the limit switch);
-//              the ratio is computed here (core/lathe/ratio.h's
-//              gear_ratio_exact): one the follower cannot run exactly is
-//              refused with a message, never approximated
+//              the ratio is computed here (core/lathe/ratio.h): one the
+//              follower cannot run exactly is refused with a message
+//              (gear_ratio_exact), or, with L::kApproximate, replaced by
+//              the nearest it can run (gear_ratio), shown as "Approx.
+//              ratio" and its lead's error per spindle turn in um before
+//              the ready screen
 //   ready      "OK to cut pass N" + the live line; a multi-start thread
 //              "OK pass N st K/n": start K's pass (start K of n begins K-1
 //              n-ths of a turn after start 1, exactly: follower.h); A offers
@@ -53,7 +56,10 @@
 // spindle, not waiting for the index); busy(); stop_now(); position()
 // (steps); following_error() (steps); rpm(); move_to(steps, rate) ->
 // accepted, and then busy() until it ends; ms() (a free-running millisecond
-// count); save(settings).
+// count); save(settings); kDrive, the leadscrew's drive (settings.h: the
+// settings' fields and layout); kApproximate, whether a ratio the follower
+// cannot run exactly is approximated (the continued fraction, about 1.6 KB
+// of AVR flash) or refused.
 //
 // Numbers: lengths, moves and the carriage's Z through units.h, exact.
 //
@@ -84,10 +90,13 @@ constexpr uint16_t kRefreshMs = 100;
 template <class L>
 class Workflow {
  public:
+  static constexpr Drive kDrive = L::kDrive;
+  using Block = Settings<kDrive>;
+
   // After the settings block was read from the EEPROM: `loaded` says
   // whether it was valid (else the defaults are in use, and a message says
   // so).
-  void start(const Settings& s, bool loaded) {
+  void start(const Block& s, bool loaded) {
     settings_ = s;
     screen_.clear_sent();
     go(State::menu);
@@ -97,7 +106,7 @@ class Workflow {
 
   const Screen& screen() const { return screen_; }
   Screen& screen() { return screen_; }
-  const Settings& settings() const { return settings_; }
+  const Block& settings() const { return settings_; }
   State state() const { return state_; }
 
   // One pass of the main loop: `key` is a key pressed since the last pass, or 0.
@@ -118,7 +127,7 @@ class Workflow {
 
   AM_UI_OUTLINE void message(const char* text, State back) {
     msg_ = text;
-    msg_range_ = false;
+    msg_row_ = MessageRow::blank;
     back_ = back;
     go(State::message);
   }
@@ -216,7 +225,7 @@ class Workflow {
         if (k == 'C') go(State::menu);
         break;
       case State::settings:
-        if (k == 'A') field_ = uint8_t(field_ + 1 == kFieldCount ? 0 : field_ + 1);
+        if (k == 'A') field_ = uint8_t(field_ + 1 == field_count(kDrive) ? 0 : field_ + 1);
         if (k == 'D') begin_entry(Entry::setting);
         if (k == 'C') {
           seal(settings_);
@@ -256,7 +265,7 @@ class Workflow {
 
   // --- number entry -----------------------------------------------------
   AM_UI_OUTLINE FieldSpec spec() const {
-    return flash_copy(entry_ == Entry::setting ? &field_row(field_) : &entry_row(entry_));
+    return flash_copy(entry_ == Entry::setting ? &field_row<kDrive>(field_) : &entry_row(entry_));
   }
 
   // The typed text as value x 10^decimals; false (and a message) if it is
@@ -287,7 +296,7 @@ class Workflow {
 
   AM_UI_OUTLINE bool refuse(const char* why, bool range) {
     message(why, State::entry);
-    msg_range_ = range;
+    msg_row_ = range ? MessageRow::range : MessageRow::blank;
     return false;
   }
 
@@ -302,8 +311,10 @@ class Workflow {
     }
     if (entry_ == Entry::length) {
       length_steps_ = um_to_steps(m, v * 10);
-      const GearRatio g = gear_ratio_exact(m, {pitch_, starts_, left_ ? Hand::left : Hand::right});
-      if (g.status != RatioStatus::exact) {
+      const ThreadRequest t = {pitch_, starts_, left_ ? Hand::left : Hand::right};
+      const GearRatio g = L::kApproximate ? gear_ratio(m, t) : gear_ratio_exact(m, t);
+      const bool approximated = L::kApproximate && g.status == RatioStatus::approximated;
+      if (g.status != RatioStatus::exact && !approximated) {
         message(AM_TEXT("Ratio not exact"), State::menu);
         return;
       }
@@ -312,6 +323,11 @@ class Workflow {
       pass_ = 1;
       start_ = 0;
       go(State::ready);
+      if (approximated) {
+        message(AM_TEXT("Approx. ratio"), State::ready);
+        msg_row_ = MessageRow::error;
+        msg_error_pm_ = g.error_pm;
+      }
     }
   }
 
@@ -385,17 +401,24 @@ class Workflow {
         progress();
         break;
       case State::settings: {
-        const FieldSpec f = field(field_);
+        const FieldSpec f = field<kDrive>(field_);
         s.line(0, f.label);
-        s.blank(1, s.number(1, 0, int32_t(settings_.value[field_]), 0, f.decimals), 13);
-        s.number(1, 13, field_ + 1, 1, 0);
-        s.put(1, 14, '/');
-        s.number(1, 15, kFieldCount, 1, 0);
+        // "N/M" at the row's end: one digit each for the stepper's 8
+        // fields, two for the servo's 11.
+        constexpr uint8_t kDigits = field_count(kDrive) > 9 ? 2 : 1, kAt = kCols - 2 * kDigits - 1;
+        s.blank(1, s.number(1, 0, int32_t(settings_.value[field_]), 0, f.decimals), kAt);
+        s.number(1, kAt, field_ + 1, kDigits, 0);
+        s.put(1, kAt + kDigits, '/');
+        s.number(1, kAt + kDigits + 1, field_count(kDrive), kDigits, 0);
         break;
       }
       case State::message:
         s.line(0, msg_);
-        if (msg_range_) {
+        if (L::kApproximate && msg_row_ == MessageRow::error) {
+          // The approximated lead's error per spindle turn, in um with 4
+          // decimals (the error is in pm, truncated toward zero).
+          s.blank(1, s.text(1, s.number(1, s.text(1, 0, AM_TEXT("err")), msg_error_pm_ / 100, 0, 4), AM_TEXT("um/rev")));
+        } else if (msg_row_ == MessageRow::range) {
           const FieldSpec sp = spec();
           s.blank(1, s.number(1, s.text(1, s.number(1, 0, sp.min, 0, sp.decimals), AM_TEXT("..")), sp.max, 0,
                               sp.decimals));
@@ -407,7 +430,7 @@ class Workflow {
   }
 
   Screen screen_;
-  Settings settings_;
+  Block settings_;
   State state_;
   State back_;
   Entry entry_;
@@ -418,7 +441,10 @@ class Workflow {
   uint8_t starts_;  // 1..8
   uint8_t start_;   // the next pass's start, 0..starts_ - 1
   bool retracting_;
-  bool msg_range_;
+  // A message's second row: blank, the entry's range, or an approximated
+  // ratio's error (msg_error_pm_, L::kApproximate only).
+  enum class MessageRow : uint8_t { blank, range, error } msg_row_;
+  int32_t msg_error_pm_;
   TypedText typed_;
   uint16_t pass_;
   uint16_t entered_ms_;

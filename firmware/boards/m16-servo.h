@@ -59,11 +59,22 @@ struct SpindlePins {
 // No stepped axes: the leadscrew is the servo.
 using Axes = AxisSet<>;
 
+// The motor: the seed's 30-slot encoder disc behind its 1:26 gearbox, and
+// the PID's gains for it (below); the operator panel's defaults
+// (firmware/apps/lathe/operator.cpp) read them from here.
+struct ServoMotor {
+  static constexpr uint32_t kPulses = 30;
+  static constexpr uint32_t kGearbox = 26;
+  // The PID (core/lathe/servo_pid.h): the seed's tuning for this plant
+  // (60 degrees phase margin, crossover about 132 rad/s).
+  static constexpr am::ServoGains kGains = {72037, 82608, 672};
+};
+
 // The machine for the gearing core: 30 pulses x 26 = 780 counts per turn of
 // the 3.175 mm leadscrew. Positive counts move +Z, so with the spindle
 // forward a right-hand thread needs negative counts: leadscrew_reversed.
 constexpr am::Pitch kLeadscrewPitch = am::pitch_tpi(8);
-constexpr am::CountsPerTurn kLeadscrewCounts = am::servo_counts(30, 26);
+constexpr am::CountsPerTurn kLeadscrewCounts = am::servo_counts(ServoMotor::kPulses, ServoMotor::kGearbox);
 constexpr bool kLeadscrewReversed = true;
 constexpr uint16_t kSpindleLines = 40;
 constexpr bool kSpindleQuadrature = false;
@@ -75,10 +86,8 @@ constexpr bool kSpindleQuadrature = false;
 // uses the gain: duty = speed / 2.0866.
 constexpr uint32_t kServoGain_e4 = 20866;  // counts/s per duty count, x 10^4
 constexpr uint32_t kServoTauUs = 13461;    // 1 / 74.29 s: a move stops its drive w tau before its end
-// The PID (core/lathe/servo_pid.h): the seed's tuning for this plant
-// (60 degrees phase margin, crossover about 132 rad/s), sampled every 16th
-// Timer1 overflow: 16 x 1024 cycles, 1.024 ms at 16 MHz.
-constexpr am::ServoGains kServoGains = {72037, 82608, 672};
+// The PID is sampled every 16th Timer1 overflow: 16 x 1024 cycles, 1.024 ms
+// at 16 MHz.
 constexpr uint8_t kServoSampleOverflows = 16;
 // Positioning moves (G0, the retract): at most 1800 counts/s (7.3 mm/s, 84 %
 // of the motor's top speed, so the loop keeps headroom), 20000 counts/s^2;

@@ -114,10 +114,10 @@ TEST(UiTables, RowsAreCoreLathesEntries) {
 }
 
 // The seed's machine: a 40-slot disc, a 3.175 mm leadscrew, 200 full steps.
-const am::ui::Settings kSeed = {{40, 0, 3175, 0, 200, 1, 0, 4000}, 0};
+const am::ui::Settings<am::ui::Drive::stepper> kSeed = {{40, 0, 3175, 0, 200, 1, 0, 4000}, 0};
 
 TEST(UiSettings, DefaultsReplaceAnInvalidBlock) {
-  am::ui::Settings s{};
+  am::ui::Settings<am::ui::Drive::stepper> s{};
   EXPECT_FALSE(am::ui::load_settings(s, kSeed));
   const am::Machine m = am::ui::machine(s);
   EXPECT_EQ(m.spindle_counts, 40);
@@ -133,7 +133,7 @@ TEST(UiSettings, DefaultsReplaceAnInvalidBlock) {
 }
 
 TEST(UiSettings, EveryCorruptionIsCaught) {
-  am::ui::Settings good{};
+  am::ui::Settings<am::ui::Drive::stepper> good{};
   am::ui::load_settings(good, kSeed);
   good.value[am::ui::kFieldMicrosteps] = 16;
   good.value[am::ui::kFieldLeadTpi] = 80;  // an 8 TPI leadscrew
@@ -145,15 +145,15 @@ TEST(UiSettings, EveryCorruptionIsCaught) {
   // Every single-bit flip of the block is refused (Fletcher-16 catches all
   // of them), so the defaults come back.
   for (size_t bit = 0; bit < sizeof good * 8; ++bit) {
-    am::ui::Settings s = good;
+    am::ui::Settings<am::ui::Drive::stepper> s = good;
     reinterpret_cast<uint8_t*>(&s)[bit / 8] ^= uint8_t(1u << (bit % 8));
-    if (bit / 8 >= offsetof(am::ui::Settings, check) + sizeof s.check) continue;  // padding
+    if (bit / 8 >= offsetof(am::ui::Settings<am::ui::Drive::stepper>, check) + sizeof s.check) continue;  // padding
     EXPECT_FALSE(am::ui::settings_valid(s)) << bit;
   }
   // A value out of its range with a matching check is refused too.
-  for (uint8_t f = 0; f < am::ui::kFieldCount; ++f) {
-    am::ui::Settings s = good;
-    const am::ui::FieldSpec spec = am::ui::field(f);
+  for (uint8_t f = 0; f < am::ui::field_count(am::ui::Drive::stepper); ++f) {
+    am::ui::Settings<am::ui::Drive::stepper> s = good;
+    const am::ui::FieldSpec spec = am::ui::field<am::ui::Drive::stepper>(f);
     s.value[f] = uint32_t(spec.max) + 1;
     am::ui::seal(s);
     EXPECT_FALSE(am::ui::settings_valid(s)) << int(f);
@@ -164,7 +164,7 @@ TEST(UiSettings, EveryCorruptionIsCaught) {
     }
   }
   // Erased cells.
-  am::ui::Settings erased;
+  am::ui::Settings<am::ui::Drive::stepper> erased;
   std::memset(&erased, 0xFF, sizeof erased);
   EXPECT_FALSE(am::ui::load_settings(erased, kSeed));
   EXPECT_TRUE(am::ui::settings_valid(erased));  // now the defaults

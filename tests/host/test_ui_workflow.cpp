@@ -18,7 +18,7 @@ int32_t FakeLathe::pos, FakeLathe::target, FakeLathe::cut_start, FakeLathe::erro
 uint16_t FakeLathe::rpm_now, FakeLathe::now_ms;
 std::vector<FakeLathe::Engage> FakeLathe::engages;
 std::vector<std::pair<int32_t, uint32_t>> FakeLathe::moves;
-std::vector<am::ui::Settings> FakeLathe::saved;
+std::vector<am::ui::Settings<am::ui::Drive::stepper>> FakeLathe::saved;
 
 namespace {
 
@@ -335,7 +335,7 @@ TEST_F(UiTest, SettingsEditedValidatedAndSaved) {
   press(ui, "C");
   EXPECT_EQ(r0(), "Settings saved  ");
   ASSERT_EQ(FakeLathe::saved.size(), 1u);
-  am::ui::Settings s = FakeLathe::saved[0];
+  am::ui::Settings<am::ui::Drive::stepper> s = FakeLathe::saved[0];
   EXPECT_EQ(s.value[am::ui::kFieldEncoderLines], 150u);
   EXPECT_EQ(s.value[am::ui::kFieldQuadrature], 1u);
   EXPECT_EQ(s.value[am::ui::kFieldMicrosteps], 8u);
@@ -354,7 +354,7 @@ TEST_F(UiTest, SettingsEditedValidatedAndSaved) {
 // Where the reduced ratio does not fit the follower's 32 bits, the panel
 // refuses it: it never cuts an approximated thread.
 TEST_F(UiTest, RatioThatCannotRunExactlyIsRefused) {
-  am::ui::Settings s = default_settings();
+  am::ui::Settings<am::ui::Drive::stepper> s = default_settings();
   s.value[am::ui::kFieldEncoderLines] = 16381;
   s.value[am::ui::kFieldLeadUm] = 49999;
   am::ui::seal(s);
@@ -371,8 +371,43 @@ TEST_F(UiTest, RatioThatCannotRunExactlyIsRefused) {
   EXPECT_TRUE(FakeLathe::engages.empty());
 }
 
+// With kApproximate the same request is cut at the nearest ratio the
+// follower holds: the message shows its lead's error per spindle turn, the
+// one gear_ratio() reports (0 pm here, truncated toward zero; its continued fraction and error are held
+// against brute force and the definition in test_lathe_ratio.cpp), then the
+// pass is ready and engages that ratio.
+TEST_F(UiTest, ApproximatingWorkflowCutsTheNearestRatioAndShowsItsError) {
+  am::ui::Settings<am::ui::Drive::stepper> s = default_settings();
+  s.value[am::ui::kFieldEncoderLines] = 16381;
+  s.value[am::ui::kFieldLeadUm] = 49999;
+  am::ui::seal(s);
+  ApproxUi approx{};
+  approx.start(s, true);
+  press(approx, "1A");
+  press(approx, "199#9D11");
+  press(approx, "0D");
+  const am::GearRatio g = am::gear_ratio(am::ui::machine(s), {am::Pitch{254000, 1999}, 1, am::Hand::right});
+  ASSERT_EQ(g.status, am::RatioStatus::approximated);
+  EXPECT_EQ(row(approx, 0), "Approx. ratio   ");
+  char expect[32];
+  const int32_t e = g.error_pm / 100;  // 0.0001 um
+  std::snprintf(expect, sizeof expect, "err%s%d.%04dum/rev", e < 0 ? "-" : "", std::abs(e) / 10000, std::abs(e) % 10000);
+  EXPECT_EQ(row(approx, 1), std::string(expect) + std::string(16 - std::strlen(expect), ' '));
+  press(approx, "C");  // any key: the ready screen
+  EXPECT_EQ(row(approx, 0), "OK to cut pass 1");
+  press(approx, "D");
+  ASSERT_EQ(FakeLathe::engages.size(), 1u);
+  EXPECT_EQ(FakeLathe::engages[0].ratio.num, g.ratio.num);
+  EXPECT_EQ(FakeLathe::engages[0].ratio.den, g.ratio.den);
+  // An exact ratio shows no message: straight to the ready screen.
+  ApproxUi exact{};
+  exact.start(default_settings(), true);
+  press(exact, "11D110D");
+  EXPECT_EQ(row(exact, 0), "OK to cut pass 1");
+}
+
 TEST_F(UiTest, InvalidSettingsAtStartSayDefaults) {
-  am::ui::Settings s;
+  am::ui::Settings<am::ui::Drive::stepper> s;
   std::memset(&s, 0xFF, sizeof s);  // erased EEPROM
   const bool ok = am::ui::load_settings(s, seed_machine());
   EXPECT_FALSE(ok);
@@ -390,7 +425,7 @@ TEST_F(UiTest, InvalidSettingsAtStartSayDefaults) {
 TEST_F(UiTest, TypedPitchesAndLengthsSweep) {
   std::mt19937 rng(11);
   for (int n = 0; n < 400; ++n) {
-    am::ui::Settings s = default_settings();
+    am::ui::Settings<am::ui::Drive::stepper> s = default_settings();
     const uint32_t lines = 1 + rng() % 4096, quad = rng() % 2, steps = 1 + rng() % 400, micro = 1 + rng() % 32;
     const uint32_t lead = 100 + rng() % 49901, counts = lines * (quad ? 4 : 1);
     s.value[am::ui::kFieldEncoderLines] = lines;
@@ -422,7 +457,7 @@ TEST_F(UiTest, TypedPitchesAndLengthsSweep) {
 TEST_F(UiTest, LivePositionSweep) {
   std::mt19937 rng(12);
   for (int n = 0; n < 300; ++n) {
-    am::ui::Settings s = default_settings();
+    am::ui::Settings<am::ui::Drive::stepper> s = default_settings();
     const uint32_t steps = 1 + rng() % 10000, micro = 1 + rng() % 256, lead = 100 + rng() % 49901;
     s.value[am::ui::kFieldMotorSteps] = steps;
     s.value[am::ui::kFieldMicrosteps] = micro;

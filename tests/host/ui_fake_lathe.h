@@ -14,6 +14,8 @@
 #include "../../core/ui/workflow.h"
 
 struct FakeLathe {
+  static constexpr am::ui::Drive kDrive = am::ui::Drive::stepper;
+  static constexpr bool kApproximate = false;
   struct Engage {
     am::Ratio ratio;
     bool reversed;
@@ -28,7 +30,7 @@ struct FakeLathe {
   static uint16_t rpm_now, now_ms;
   static std::vector<Engage> engages;
   static std::vector<std::pair<int32_t, uint32_t>> moves;
-  static std::vector<am::ui::Settings> saved;
+  static std::vector<am::ui::Settings<am::ui::Drive::stepper>> saved;
 
   static void reset() {
     motion = idle;
@@ -63,7 +65,7 @@ struct FakeLathe {
     return true;
   }
   static uint16_t ms() { return now_ms; }
-  static void save(const am::ui::Settings& s) { saved.push_back(s); }
+  static void save(const am::ui::Settings<am::ui::Drive::stepper>& s) { saved.push_back(s); }
 
   static void index() { synced_now = true; }
   static void run(int32_t n) {
@@ -83,7 +85,15 @@ struct FakeLathe {
 
 using Ui = am::ui::Workflow<FakeLathe>;
 
-inline std::string row(const Ui& ui, int r) {
+// The same lathe with a workflow that approximates what it cannot run
+// exactly (a board with kApproximateRatios).
+struct FakeApproxLathe : FakeLathe {
+  static constexpr bool kApproximate = true;
+};
+using ApproxUi = am::ui::Workflow<FakeApproxLathe>;
+
+template <class W>
+std::string row(const W& ui, int r) {
   std::string s;
   for (int c = 0; c < am::ui::kCols; ++c) {
     const char ch = ui.screen().cell[r * am::ui::kCols + c];
@@ -92,7 +102,8 @@ inline std::string row(const Ui& ui, int r) {
   return s;
 }
 
-inline void press(Ui& ui, const std::string& keys) {
+template <class W>
+void press(W& ui, const std::string& keys) {
   for (char k : keys) ui.poll(k);
 }
 
@@ -106,10 +117,10 @@ inline void wait_ms(Ui& ui, int ms) {
 
 // The seed's machine: a 40-slot disc counted on one edge, a 3.175 mm
 // leadscrew, a 200-step motor in full steps, rapid 4000 steps/s.
-inline am::ui::Settings seed_machine() { return {{40, 0, 3175, 0, 200, 1, 0, 4000}, 0}; }
+inline am::ui::Settings<am::ui::Drive::stepper> seed_machine() { return {{40, 0, 3175, 0, 200, 1, 0, 4000}, 0}; }
 
-inline am::ui::Settings default_settings() {
-  am::ui::Settings s{};
+inline am::ui::Settings<am::ui::Drive::stepper> default_settings() {
+  am::ui::Settings<am::ui::Drive::stepper> s{};
   am::ui::load_settings(s, seed_machine());  // a zero block is invalid: the defaults
   return s;
 }

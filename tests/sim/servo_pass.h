@@ -78,8 +78,10 @@ constexpr double kMmPerCount = 3.175 / 780;
 // the firmware finds it), its end (the first count whose target
 // floor(sigma lambda s) reaches `end`), and the carriage against the helix
 // every servo log entry between the two (or up to `until`).
-inline PassFigures measure(const ServoRig& rig, uint64_t armed, double base, int64_t end, uint64_t until,
-                           int sigma = kSigma) {
+// `rig`: a ServoRig, or any rig with the same spindle, servo and machine
+// (the m32-servo-panel's, test_lathe_servo_panel.cpp).
+template <class Rig>
+PassFigures measure(const Rig& rig, uint64_t armed, double base, int64_t end, uint64_t until, int sigma = kSigma) {
   PassFigures f;
   bool was_high = true;
   for (const auto& t : rig.spindle->log()) {

@@ -45,14 +45,14 @@ inline std::string slurp(const std::string& path) {
 
 inline bool exists(const std::string& path) { return std::ifstream(path).good(); }
 
-// An ATmega16 image's flash (.text + .data) and RAM (.data + .bss) as the
+// An image's flash (.text + .data) and RAM (.data + .bss) as the
 // toolchain's avr-size prints them; 0 and 0 if it could not be run.
 struct ImageSize {
   unsigned long flash = 0, ram = 0;
 };
-inline ImageSize avr_size_m16(const std::string& name) {
+inline ImageSize avr_size(const std::string& name, const std::string& mcu = "atmega16") {
   ImageSize size;
-  const std::string cmd = "avr-size -C --mcu=atmega16 " + image(name);
+  const std::string cmd = "avr-size -C --mcu=" + mcu + " " + image(name);
   FILE* out = popen(cmd.c_str(), "r");
   if (!out) return size;
   char line[256];

@@ -14,46 +14,24 @@
 #include <string>
 #include <vector>
 
-#include "keypad_model.h"
 #include "lathe_check.h"
-#include "lcd_model.h"
-#include "sim_fixture.h"
-#include "spindle_encoder.h"
+#include "panel_rig.h"
 
 namespace {
 
 constexpr uint32_t kSettingsBytes = 34;  // 8 fields x 4 bytes + the check (core/ui/settings.h)
 
-struct Panel {
-  std::unique_ptr<sim::Machine> m;
-  std::unique_ptr<sim::LcdModel> lcd;
-  std::unique_ptr<sim::KeypadModel> keys;
-  std::unique_ptr<sim::SpindleEncoder> spindle;
+struct Panel : simtest::PanelRig {
   const std::vector<sim::PinEdge>* step;
 
   explicit Panel(const std::vector<uint8_t>& eeprom = {}, double rpm = 0,
                  const sim::KeypadTiming& keypad = sim::KeypadTiming())
-      : m(new sim::Machine(simtest::image("m16-panel"))), step(&m->watch_pin('C', 0)) {
-    if (!eeprom.empty()) {
-      std::vector<uint8_t> bytes = eeprom;
-      avr_eeprom_desc_t d{bytes.data(), 0, uint32_t(bytes.size())};
-      avr_ioctl(m->avr(), AVR_IOCTL_EEPROM_SET, &d);
-    }
-    lcd.reset(new sim::LcdModel(*m));
-    keys.reset(new sim::KeypadModel(*m, keypad));
+      : PanelRig("m16-panel", eeprom, seed_disc(rpm), keypad), step(&m->watch_pin('C', 0)) {}
+  static sim::SpindleParams seed_disc(double rpm) {
     sim::SpindleParams p;  // the seed's 40-slot disc
     p.profile = {{0, rpm}};
-    spindle.reset(new sim::SpindleEncoder(*m, p));
+    return p;
   }
-  double now() const { return double(m->cycles()) / m->f_cpu(); }
-  void run_to(double t_s) {
-    const uint64_t at = uint64_t(t_s * m->f_cpu());
-    if (at > m->cycles()) m->run([] { return false; }, at - m->cycles());
-  }
-  // Types `k` from 10 ms on, a key every 0.25 s, and runs past the last.
-  void type(const std::string& k) { run_to(keys->type(k, now() + 0.01)); }
-  std::string row0() const { return lcd->row(0); }
-  std::string row1() const { return lcd->row(1); }
   // Runs until row 1 reads `text` (the driver writes row 0 first, so the
   // whole screen is then up); false after `budget_s`.
   bool until_row1(const std::string& text, double budget_s) {
@@ -65,11 +43,7 @@ struct Panel {
     const std::string r = row1();
     return r.substr(4, 5) == "rpm Z" && std::abs(std::atoi(r.substr(0, 4).c_str()) - rpm) <= rpm / 100;
   }
-  std::vector<uint8_t> eeprom() {
-    avr_eeprom_desc_t d{nullptr, 0, kSettingsBytes};
-    avr_ioctl(m->avr(), AVR_IOCTL_EEPROM_GET, &d);
-    return d.ee ? std::vector<uint8_t>(d.ee, d.ee + kSettingsBytes) : std::vector<uint8_t>();
-  }
+  std::vector<uint8_t> eeprom() { return PanelRig::eeprom(kSettingsBytes); }
   // The cycle of the spindle index's last rise so far.
   uint64_t last_index() const {
     uint64_t at = 0;
@@ -262,7 +236,7 @@ TEST(LatheOperator, MultiStartPassesFromTheKeysLandOnTheirPhase) {
 // The panel image within the ATmega16's flash with 10 % to spare (avr-size
 // of the toolchain that built it).
 TEST(LatheOperator, PanelImageLeavesTenPercentOfTheFlash) {
-  const simtest::ImageSize size = simtest::avr_size_m16("m16-panel");
+  const simtest::ImageSize size = simtest::avr_size("m16-panel");
   const unsigned long flash = size.flash, ram = size.ram;
   ASSERT_GT(flash, 0u);
   std::printf("m16-panel: %lu B of flash (limit 14745 B, 90 %% of 16384), %lu B of RAM (.data + .bss)\n", flash, ram);

@@ -54,6 +54,10 @@
 
 #include "../../../core/lathe/ratio.h"
 
+namespace am {
+struct ServoGains;
+}  // namespace am
+
 namespace leadscrew {
 
 enum class State : uint8_t { idle, moving, armed, catching, locked };
@@ -85,9 +89,12 @@ bool set_encoder(bool quadrature, uint16_t lines);
 // end (the base of the next pass, and the front end's "here"); last_slip()
 // that end's target minus where the carriage is (final once idle: the
 // motor has stopped). The stepper's carriage always ends where it was
-// meant to.
+// meant to. set_gains(): the position PID's gains (core/lathe/servo_pid.h),
+// taken only while idle and within the PID's ranges (false otherwise, the
+// gains in use kept); init() starts with the board's (kServoGains).
 int32_t reference();
 int32_t last_slip();
+bool set_gains(const am::ServoGains& gains);
 am::Machine machine();
 
 }  // namespace leadscrew

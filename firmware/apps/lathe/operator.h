@@ -12,8 +12,10 @@
 //   due (keypad.h), one step of the workflow, one bus operation of the
 //   display (hd44780.h); it never waits and never turns interrupts off, so
 //   the leadscrew's interrupts keep their latency while the screen changes.
-//   Only on a board whose header sets kOperatorPanel (the m16-panel
-//   image): the panel and the UART front end do not both fit the ATmega16.
+//   Only on a board whose header sets kOperatorPanel (the m16-panel and
+//   m32-servo-panel images): the panel and the UART front end do not both
+//   fit the ATmega16. On a DC-servo board the settings hold the PID's gains
+//   too (core/ui/settings.h), handed to leadscrew::set_gains().
 #pragma once
 
 namespace operator_ui {

@@ -19,8 +19,9 @@ constexpr uint32_t kPwmPeriod = 1024;  // cycles
 constexpr uint32_t kSampleCycles = kPwmPeriod * board::kServoSampleOverflows;
 constexpr uint32_t kSampleUs = kSampleCycles / (F_CPU / 1000000ul);
 static_assert(kSampleCycles % (F_CPU / 1000000ul) == 0, "a whole number of microseconds a sample");
-constexpr am::ServoCoefficients kPid = am::servo_coefficients(board::kServoGains, kSampleUs);
+constexpr am::ServoCoefficients kPid = am::servo_coefficients(board::ServoMotor::kGains, kSampleUs);
 static_assert(kPid.ok, "the board's servo gains are out of the PID's ranges");
+static_assert(kSampleUs >= am::kServoMinSampleUs, "gains within the settings' ranges need samples of 1 ms or more");
 
 // The feedforward: duty = speed / gain. In a pass speed = lambda F_CPU / P
 // for a spindle count period of P cycles: duty = ff_k_ / P with ff_k_ =

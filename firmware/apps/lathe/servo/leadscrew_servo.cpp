@@ -435,6 +435,14 @@ int32_t spindle_count() {
 
 uint16_t lost_counts() { return 0; }  // one channel: nothing to check a count against
 
+bool set_gains(const am::ServoGains& gains) {
+  if (state_ != State::idle) return false;
+  const am::ServoCoefficients c = am::servo_coefficients(gains, kSampleUs);
+  bool taken;
+  ATOMIC_BLOCK(ATOMIC_RESTORESTATE) { taken = pid.set(c); }
+  return taken;
+}
+
 bool set_encoder(bool quadrature, uint16_t lines) {
   if (state_ != State::idle || lines == 0 || quadrature) return false;
   counts_per_turn_ = lines;
