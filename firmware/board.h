@@ -28,6 +28,10 @@ struct Heater;  // a heater's wiring (firmware/boards/m32.h), only with kHeater
 // printer (m32-grbl) the autotune (docs/boards.md).
 constexpr bool kAutotune = true;
 constexpr bool kPrinterCodes = false;
+// Firmware retraction (core/text/gcode_retraction.h): G10/G11 and their
+// settings M207/M208, about 0.6 KB; the grbl printer's (m32-grbl): the
+// Marlin printer's flash is full.
+constexpr bool kFirmwareRetract = false;
 // The odometer (firmware/engine/odometer.h, about 1 KB of flash): M114
 // counts where the motors are while they move. Without it, where the
 // queued motion ends (Marlin's logical position).

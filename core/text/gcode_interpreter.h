@@ -17,7 +17,10 @@
 //   unsupported_code, as in a Marlin built without microstep pins, and none
 //   of its checks is linked. GcodeInterpreter<N, A, H, D, M, false> (the
 //   default: as H) has no printer codes (M73 M201 M203 M204 M205 M220
-//   M221: unsupported_code) and no flow.
+//   M221: unsupported_code) and no flow. GcodeInterpreter<N, A, H, D, M,
+//   P, true> has the firmware retraction (gcode_retraction.h: G10 G11 M207
+//   M208); without it (the default) they are unsupported_code and nothing
+//   of it is linked or kept in RAM.
 //
 //   execute(block, action) applies one block. On GcodeError::none the state
 //   has moved on (modes, feed, G92 offsets, position) and `action` says what
@@ -130,9 +133,26 @@
 
 namespace am {
 
+// The firmware retraction's settings and state (gcode_retraction.h),
+// lengths in 1/10000 mm, feeds in 1/10000 mm/min; Marlin's defaults.
+struct GcodeRetraction {
+  int32_t length = 30000;          // M207 S: 3 mm (Marlin's RETRACT_LENGTH)
+  int32_t feed = 27000000;         // M207 F: 2700 mm/min (45 mm/s)
+  int32_t hop = 0;                 // M207 Z: the nozzle's lift
+  int32_t extra = 0;               // M208 S: pushed back beyond the length
+  int32_t recover_feed = 4800000;  // M208 F: 480 mm/min (8 mm/s)
+  bool retracted = false;
+};
+template <bool Retract>
+struct GcodeRetractionSlot {
+  GcodeRetraction value;
+};
+template <>
+struct GcodeRetractionSlot<false> {};
+
 template <uint8_t N, bool Arcs = true, bool Heater = true, bool MarlinDwell = false, bool Modes = true,
-          bool Printer = Heater>
-class GcodeInterpreter {
+          bool Printer = Heater, bool Retract = false>
+class GcodeInterpreter : private GcodeRetractionSlot<Retract> {  // empty without Retract: no RAM
   static_assert(N >= 1 && N <= 8, "one bit per axis in GcodeAction::axes");
 
  public:
@@ -145,6 +165,7 @@ class GcodeInterpreter {
   void reset() {
     state_.modal = GcodeModal{Motion::rapid, Plane::xy, false, false, false, 0};
     for (uint8_t i = 0; i < N; ++i) state_.axis[i] = GcodeAxisState{0, 0, 0};
+    clear_retracted(*this);
   }
 
   const GcodeState<N>& state() const { return state_; }
@@ -197,16 +218,34 @@ class GcodeInterpreter {
 
   GcodeError run(const char* line, GcodeAction<N>& action) {
     GcodeBlock block;
-    const GcodeError e = parse_gcode<Printer>(line, block);
+    const GcodeError e = parse_gcode<Printer, Retract>(line, block);
     return e != GcodeError::none ? e : execute(block, action);
   }
 
   GcodeError execute(const GcodeBlock& b, GcodeAction<N>& a);
 
+  // The firmware retraction's settings and state (Retract only).
+  using Retraction = GcodeRetraction;
+  const Retraction& retraction() const { return this->value; }
+
  private:
   GcodeError arc(const GcodeBlock& b, const GcodeModal& m, GcodeAction<N>& a) const;
   GcodeError heater(const GcodeBlock& b, GcodeAction<N>& a) const;
   GcodeError printer(const GcodeBlock& b, GcodeAction<N>& a) const;
+  // The retraction lives only in an interpreter with Retract (the base
+  // GcodeRetractionSlot: no RAM, no constructor code without it): each step
+  // has an overload for the empty slot, never called (execute() asks
+  // Retract first).
+  template <bool R>
+  using RetractionSlot = GcodeRetractionSlot<R>;
+  GcodeError retract(const GcodeBlock& b, GcodeAction<N>& a, bool out, RetractionSlot<true>& slot);
+  GcodeError retract_settings(const GcodeBlock& b, bool recover, RetractionSlot<true>& slot);
+  GcodeError retract(const GcodeBlock&, GcodeAction<N>&, bool, RetractionSlot<false>&) {
+    return GcodeError::unsupported_code;
+  }
+  GcodeError retract_settings(const GcodeBlock&, bool, RetractionSlot<false>&) { return GcodeError::unsupported_code; }
+  static void clear_retracted(RetractionSlot<true>& slot) { slot.value.retracted = false; }
+  static void clear_retracted(RetractionSlot<false>&) {}
   // M221's flow on E's target `steps` from `st` (its offset into `offset`);
   // false beyond the position range.
   [[gnu::noinline]] bool flow(const GcodeAxisState& st, int32_t& steps, int32_t& offset) const {
@@ -237,9 +276,18 @@ class GcodeInterpreter {
   uint16_t flow_ = 100;  // M221: percent of every E move's steps (a printer's)
 };
 
-template <uint8_t N, bool Arcs, bool Heater, bool MarlinDwell, bool Modes, bool Printer>
-GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes, Printer>::execute(const GcodeBlock& b, GcodeAction<N>& a) {
+template <uint8_t N, bool Arcs, bool Heater, bool MarlinDwell, bool Modes, bool Printer, bool Retract>
+GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes, Printer, Retract>::execute(const GcodeBlock& b,
+                                                                                          GcodeAction<N>& a) {
   using namespace gcode_detail;
+  if (Retract) {
+    const GcodeCode nm = b.group(GcodeGroup::non_modal), mc = b.group(GcodeGroup::machine);
+    if (nm == GcodeCode::g10 || nm == GcodeCode::g11) return retract(b, a, nm == GcodeCode::g10, *this);
+    if (mc == GcodeCode::m207 || mc == GcodeCode::m208) {
+      hold_position(a, GcodeActionKind::none);
+      return retract_settings(b, mc == GcodeCode::m208, *this);
+    }
+  }
   if (b.group(GcodeGroup::machine) >= GcodeCode::m104) return heater(b, a);
   constexpr uint32_t kArcWords =
       gcode_letter_bit('I') | gcode_letter_bit('J') | gcode_letter_bit('K') | gcode_letter_bit('R');
@@ -398,7 +446,9 @@ GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes, Printer>::execu
 
 }  // namespace am
 
-// GcodeInterpreter::arc(), heater() and printer(), apart (one concern a file).
+// GcodeInterpreter::arc(), heater(), printer() and retract(), apart (one
+// concern a file).
 #include "gcode_arc_words.h"
 #include "gcode_heater_codes.h"
 #include "gcode_printer_codes.h"
+#include "gcode_retraction.h"

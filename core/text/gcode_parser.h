@@ -12,7 +12,9 @@
 //   `block` is unspecified. It reads nothing past the NUL / `end` and writes
 //   nothing outside `block`; it keeps no state of its own. parse_gcode<false>
 //   knows none of the printer's codes (M3 M5 M73 M201 M203 M204 M205 M220
-//   M221: unsupported_code), for an image that has none of them.
+//   M221: unsupported_code), for an image that has none of them;
+//   parse_gcode<P, true> knows the firmware retraction's G10 G11 M207 M208
+//   (unsupported_code otherwise).
 //
 //   Grammar: words are a letter (either case) and a number, blanks (space,
 //   tab) allowed between words and between the letter and its number, none
@@ -34,7 +36,7 @@
 //   Codes and groups (kept as GcodeCode per GcodeGroup in the block):
 //     motion    G0 G1 G2 G3         plane     G17 G18 G19
 //     distance  G90 G91             units     G20 G21
-//     feed mode G94                 non-modal G4 G28 G92
+//     feed mode G94                 non-modal G4 G28 G92 (G10 G11)
 //     stop      M2 M30              extruder  M82 M83
 //     machine   M17 M18 M84 M114 M350 M999, and the heater's M104 M105
 //               M108 M109 M155 M301 M303 (gcode_interpreter.h: heater codes)
@@ -122,13 +124,14 @@ enum class GcodeCode : uint8_t {
   g90, g91,             // distance
   g20, g21,             // units
   g94,                  // feed mode
-  g4, g28, g92,         // non-modal
+  g4, g10, g11, g28, g92,  // non-modal (G10/G11: firmware retraction, a printer's)
   m2, m30,              // stop
   m82, m83,             // extruder
   m17, m18, m84, m114, m350, m400, m999,  // machine
   m104, m105, m106, m107, m108, m109, m155, m301, m303, m500,  // machine: the heater's and the fan's (M500: the gains)
   m3, m5,                                   // machine: the seed's hot end on and off (a printer's)
   m73, m201, m203, m204, m205, m220, m221,  // machine: the printer's progress, limits, feed and flow
+  m207, m208,                               // machine: the firmware retraction's settings
 };
 
 inline GcodeGroup gcode_group(GcodeCode c) {
@@ -190,14 +193,15 @@ inline bool blank(char c) { return c == ' ' || c == '\t'; }
 // puts in RAM.
 // Printer: the printer's codes (M3 M5 M73 M201 M203 M204 M205 M220 M221)
 // too; a parser without them reads them as unsupported (and links none of
-// their compares).
-template <bool Printer>
+// their compares). Retract: the firmware retraction's G10 G11 M207 M208.
+template <bool Printer, bool Retract>
 GcodeCode code_of(char letter, int32_t number) {
   if (number < 0 || number > 999) return GcodeCode::none;
   const uint16_t n = uint16_t(number);  // 16-bit compares: half the code of 32-bit ones on the AVR
   if (letter == 'G') {
     if (n <= 3) return GcodeCode(uint8_t(GcodeCode::g0) + n);
     if (n == 4) return GcodeCode::g4;
+    if (Retract && (n == 10 || n == 11)) return GcodeCode(uint8_t(GcodeCode::g10) + (n - 10));
     if (n == 28) return GcodeCode::g28;
     if (n >= 17 && n <= 19) return GcodeCode(uint8_t(GcodeCode::g17) + (n - 17));
     if (n == 20 || n == 21) return GcodeCode(uint8_t(GcodeCode::g20) + (n - 20));
@@ -220,6 +224,7 @@ GcodeCode code_of(char letter, int32_t number) {
   if (n == 301) return GcodeCode::m301;
   if (n == 303) return GcodeCode::m303;
   if (n == 500) return GcodeCode::m500;
+  if (Retract && (n == 207 || n == 208)) return GcodeCode(uint8_t(GcodeCode::m207) + (n - 207));
   if (!Printer) return GcodeCode::none;
   if (n == 3 || n == 5) return GcodeCode(uint8_t(GcodeCode::m3) + (n == 5));
   if (n == 73) return GcodeCode::m73;
@@ -230,7 +235,7 @@ GcodeCode code_of(char letter, int32_t number) {
 
 }  // namespace gcode_detail
 
-template <bool Printer = true>
+template <bool Printer = true, bool Retract = false>
 GcodeError parse_gcode(const char* p, GcodeBlock& b, const char* end = nullptr) {
   using namespace gcode_detail;
   b.words = 0;
@@ -275,7 +280,7 @@ GcodeError parse_gcode(const char* p, GcodeBlock& b, const char* end = nullptr) 
     if (line_number && (!first_word || had_point || v < 0)) return GcodeError::bad_line_number;
     first_word = false;
     if (is_code) {
-      const GcodeCode code = had_point || v < 0 ? GcodeCode::none : code_of<Printer>(letter, v);
+      const GcodeCode code = had_point || v < 0 ? GcodeCode::none : code_of<Printer, Retract>(letter, v);
       if (code == GcodeCode::none) return GcodeError::unsupported_code;
       GcodeCode& slot = b.code[uint8_t(gcode_group(code))];
       if (slot != GcodeCode::none) return GcodeError::modal_group_conflict;

@@ -10,8 +10,8 @@
 
 namespace am {
 
-template <uint8_t N, bool Arcs, bool Heater, bool MarlinDwell, bool Modes, bool Printer>
-GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes, Printer>::printer(const GcodeBlock& b,
+template <uint8_t N, bool Arcs, bool Heater, bool MarlinDwell, bool Modes, bool Printer, bool Retract>
+GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes, Printer, Retract>::printer(const GcodeBlock& b,
                                                                                    GcodeAction<N>& a) const {
   const GcodeCode code = b.group(GcodeGroup::machine);
   const bool limits = code >= GcodeCode::m201 && code <= GcodeCode::m204;  // lengths per s or s^2, above 0

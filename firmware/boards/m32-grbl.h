@@ -13,5 +13,8 @@ namespace board {
 // firmware/apps/cnc/app.cmake) and take the heater M-codes.
 constexpr bool kHeater = true;
 constexpr Protocol kProtocol = Protocol::grbl;  // docs/protocol.md
+// G10/G11 firmware retraction, M207/M208 (firmware/board.h): a slicer's
+// "use firmware retraction" file prints here.
+constexpr bool kFirmwareRetract = true;
 
 }  // namespace board

@@ -73,7 +73,8 @@ constexpr bool kModes = AnyModes<board::Axes>::value();
 // A Marlin host's G4 P is milliseconds (G4 S seconds); a board whose axes
 // have no excitation modes refuses M350 whole.
 using Interpreter =
-    am::GcodeInterpreter<kAxes, board::kArcs, board::kHeater, reply::kMarlin, kModes, board::kHeater && board::kPrinterCodes>;
+    am::GcodeInterpreter<kAxes, board::kArcs, board::kHeater, reply::kMarlin, kModes, board::kHeater && board::kPrinterCodes,
+                         board::kFirmwareRetract>;
 Interpreter& interpreter() {
   static Interpreter instance(AxisTable<board::Axes>::value);
   return instance;
