@@ -13,6 +13,9 @@ if(servo_line)
   list(APPEND app_sources ${app_dir}/servo/leadscrew_servo.cpp)
 else()
   set(APP_PARTS devices)
+  # The spindle vectors in assembly (outside the link-time optimisation:
+  # the data they use have assembler names, spindle_vectors.h).
+  list(APPEND app_sources ${app_dir}/spindle_vectors.S)
 endif()
 # The operator panel's image (a board with kOperatorPanel, firmware/apps/
 # lathe/operator.h) has no UART front end: neither the protocol nor the
