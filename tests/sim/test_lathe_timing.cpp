@@ -45,6 +45,12 @@ TEST(LatheTiming, PulsesAndCountsAtHighEdgeRates) {
       {600, true, 1200, "G33 Z-900 K0.5", 500, 1},
       // The seed disc at 1000 rpm, 13 TPI: 12 or 13 steps per count, in bursts.
       {40, false, 1000, "G33 Z-900 P13", 25400, 13},
+      // Engaged on a fast spindle: the catch-up's counts (the assembly
+      // without the step) at 60000 and 80000 counts/s; at 80000 the count
+      // after the lock waits for the pace vector's locking section
+      // (measured 130 cycles).
+      {600, true, 1500, "G33 Z-900 K0.5", 500, 1, 0.3},
+      {600, true, 2000, "G33 Z-900 K0.5", 500, 1, 0.3, 140},
       // Issue 11's aim: 3000 rpm of the 600-line encoder x4, 120000 counts/s,
       // locked while slow (a 3 s ramp: the catch-up at that rate loses
       // counts, docs/lathe.md), 0.5 and 1 mm.
@@ -52,7 +58,7 @@ TEST(LatheTiming, PulsesAndCountsAtHighEdgeRates) {
       {600, true, 3000, "G33 Z-900 K1", 1000, 1, 3.0},
       // One channel at 120000 counts/s: every count exact, but a stepping
       // count's vector is longer than the 133 cycles between edges, so the
-      // next edge's step waits (measured 255 cycles).
+      // next edge's step waits (measured 103 to 255 cycles).
       {600, false, 12000, "G33 Z-900 K0.5", 500, 1, 3.0, 280},
   };
   for (const Case& c : cases) {

@@ -1,9 +1,9 @@
 // The leadscrew's interrupts and its speed control (contract: leadscrew.h).
 //
 // Who writes what: the spindle vectors (INT1, INT0: spindle_vectors.S, in
-// assembly) decode each count and, once locked, step; a count while not
-// locked goes to their C part here (__vector_spindle_unlocked: the
-// follower while catching, the index while armed); the pace vector (Timer1
+// assembly) decode each count, run the follower from the index on and,
+// once locked, step; any other count goes to their C part here
+// (__vector_spindle_unlocked: the index while armed); the pace vector (Timer1
 // compare A, CTC at F_CPU / 8) steps moves and the catch-up at the period
 // poll() sets; the main loop starts and ends passes and moves with
 // interrupts off. Vectors do not nest, so each one sees the others' work
@@ -101,56 +101,80 @@ __attribute__((noinline)) void halt(Stop why) {
 }  // namespace
 }  // namespace leadscrew
 
-// A spindle count while not locked (spindle_vectors.S hands it over with
-// every register as the interrupt found it, the direction in
-// lv.slow_dir): the spindle's count, the follower's while catching up, the
-// index while armed.
+// A spindle count while neither catching up nor locked (spindle_vectors.S
+// hands it over with every register as the interrupt found it, the
+// direction in lv.slow_dir): the spindle's count, the index while armed.
 extern "C" void __vector_spindle_unlocked() __attribute__((signal, used, externally_visible)) kFast;
 void __vector_spindle_unlocked() {
   using namespace leadscrew;
   const bool forward = lv.slow_dir != 0;
   lv.encoder.count = lv.encoder.count + (forward ? 1 : -1);
-  if (state_ == State::catching) {
-    follower.edge(forward);
-  } else if (state_ == State::armed) {
+  if (state_ == State::armed) {
     const bool high = board::SpindleIndex::read();
-    if (high && !index_was_high_) state_ = State::catching;
+    if (high && !index_was_high_) {
+      // s = 0: from the next count on the assembly runs the follower
+      // (spindle_vectors.h: the lead for this count's direction).
+      const LatheVectorDir& e = lv.dir[forward];
+      lv.ahead_dir = forward ? LV_FORWARD : 0;
+      lv.lead = int32_t(am::FollowerVectorAccess::residual(follower) + e.neg_t);
+      lv.ahead = int8_t(e.whole_a + (lv.lead >= 0 ? 1 : 0));
+      state_ = State::catching;
+    }
     index_was_high_ = high;
   }
 }
 
-// The pace: one step of a move or of the catch-up.
-ISR(TIMER1_COMPA_vect) kFast;
-ISR(TIMER1_COMPA_vect) {
-  using namespace leadscrew;
+// The pace: one step of a move or of the catch-up. Interrupts are on from
+// its first instruction (ISR_NOBLOCK), so the spindle vectors, which run
+// the follower while it catches up, wait for no more than its entry: what
+// both touch (the carriage, the follower's position, the state) is read and
+// changed with interrupts off, the lock included. Its own interrupt is
+// masked while it runs: under spindle counts at 120000/s it can take
+// longer than its period.
+namespace leadscrew {
+namespace {
+kInline void pace_event() {
   OCR1A = pace_period_;
   const int8_t d = pace_dir_;
   if (d == 0) return;
   if (!board::LimitSwitch::read()) {
-    halt(Stop::limit);
+    ATOMIC_BLOCK(ATOMIC_FORCEON) { halt(Stop::limit); }
     return;
   }
   step_begin(d > 0);
   __builtin_avr_delay_cycles(board::kStepHighCycles);
   Step::low();
-  pos_ += d;
-  if (state_ == State::catching) {
-    if (pos_ == base_ + follower.position()) {
-      // Locked: the count the pace's direction asks for comes next
-      // (spindle_vectors.h: the lead and ahead of that direction).
-      const bool forward = (d > 0) != (lv.reversed != 0);
-      const LatheVectorDir& e = lv.dir[forward];
-      lv.ahead_dir = forward ? LV_FORWARD : 0;
-      lv.lead = int32_t(am::FollowerVectorAccess::residual(follower) + e.neg_t);
-      lv.ahead = int8_t(e.whole_a + (lv.lead >= 0 ? 1 : 0));
-      state_ = State::locked;
-      pace_off();
-    } else if (lv.has_end && pos_ == end_) {
-      halt(Stop::length);
+  ATOMIC_BLOCK(ATOMIC_FORCEON) {
+    pos_ += d;
+    if (state_ == State::catching) {
+      if (pos_ == base_ + follower.position()) {
+        // Locked: the spindle vectors step from the next count on, in the
+        // direction of the last count (spindle_vectors.h: the lead and
+        // ahead are that direction's); the direction pin is set for it
+        // here, a count's vector or more before its step.
+        const bool up = (lv.ahead_dir != 0) != (lv.reversed != 0);
+        if (up != dir_up_) {
+          Dir::set(up);
+          dir_up_ = up;
+        }
+        state_ = State::locked;
+        pace_off();
+      } else if (lv.has_end && pos_ == end_) {
+        halt(Stop::length);
+      }
+    } else if (pos_ == move_target_) {
+      halt(stop_ == Stop::none ? Stop::done : stop_);  // a disengage() keeps its reason
     }
-  } else if (pos_ == move_target_) {
-    halt(stop_ == Stop::none ? Stop::done : stop_);  // a disengage() keeps its reason
   }
+}
+}  // namespace
+}  // namespace leadscrew
+
+ISR(TIMER1_COMPA_vect, ISR_NOBLOCK) kFast;
+ISR(TIMER1_COMPA_vect, ISR_NOBLOCK) {
+  HAL_TIMER1_MASK &= uint8_t(~_BV(OCIE1A));
+  leadscrew::pace_event();
+  HAL_TIMER1_MASK |= _BV(OCIE1A);
 }
 
 namespace leadscrew {

@@ -22,6 +22,10 @@
  * __vector_spindle_unlocked (leadscrew.cpp) with the count's direction in
  * LV_SLOW_DIR and every register as the interrupt found it.
  *
+ * While the carriage catches up (the pace vector steps it), a count runs
+ * the same path with the T flag set: the lead, the next count's steps and
+ * the follower's position, but no step and no direction pin.
+ *
  * Registers: r24, r25, SREG, and Z once the count is locked. The data is lathe_vector's
  * and lathe_follower's, by the offsets of spindle_vectors.h.
  */
@@ -38,7 +42,19 @@
 	.section .text.spindle_vectors,"ax",@progbits
 
 /* Out of the vectors' way, within their branches' reach. */
-	/* Not locked: the C vector, registers as they were. */
+	/* Catching up (T set): the follower's count as a locked one's, no
+	 * step, no direction (the pace's). Not locked nor catching: the C
+	 * vector, registers as they were. */
+not_locked:
+	cpi r24, LV_STATE_CATCHING	; 1
+	brne unlocked			; 1/2
+	set				; 1  catching: the same count, no step
+	lds r24, V(LV_AHEAD_DIR)	; 2
+	cpse r24, r25			; 1/2
+	rjmp reaim			; 2
+	push r30			; 2
+	push r31			; 2
+	rjmp counted			; 2
 unlocked:
 	sts V(LV_SLOW_DIR), r25		; 2
 	pop r25				; 2
@@ -75,64 +91,65 @@ INT1_vect:
 common:
 	lds r24, V(LV_STATE)		; 2  34
 	cpi r24, LV_STATE_LOCKED	; 1  35
-	brne unlocked			; 1  36
-	lds r24, V(LV_AHEAD_DIR)	; 2  38
-	cpse r24, r25			; 2  40  (1 not skipping)
+	brne not_locked			; 1  36
+	clt				; 1  37  locked: T clear
+	lds r24, V(LV_AHEAD_DIR)	; 2  39
+	cpse r24, r25			; 2  41  (1 not skipping)
 	rjmp reaim			; 2      against the last count's direction
-	lds r24, V(LV_AHEAD)		; 2  42  this count's steps
-	tst r24				; 1  43
-	breq 1f				; 1  44  (2 taken: no step)
-	sbi PORTC_IO, LV_STEP_BIT	; 2  46  the step rises
-1:	push r30			; 2  48
-	push r31			; 2  50
+	lds r24, V(LV_AHEAD)		; 2  43  this count's steps
+	tst r24				; 1  44
+	breq 1f				; 1  45  (2 taken: no step)
+	sbi PORTC_IO, LV_STEP_BIT	; 2  47  the step rises
+1:	push r30			; 2  49
+	push r31			; 2  51
 counted:
-	sbrs r25, LV_FORWARD_BIT	; 2  52  (1 not skipping)
+	sbrs r25, LV_FORWARD_BIT	; 2  53  (1 not skipping)
 	rjmp back			; 2
-	lds r24, V(LV_COUNT)		; 2  54
-	subi r24, 0xFF			; 1  55  + 1
-	sts V(LV_COUNT), r24		; 2  57
-	breq count_up			; 1  58  the low byte wrapped (2)
+	lds r24, V(LV_COUNT)		; 2  55
+	subi r24, 0xFF			; 1  56  + 1
+	sts V(LV_COUNT), r24		; 2  58
+	breq count_up			; 1  59  the low byte wrapped (2)
 forward_z:
-	ldi r30, lo8(V(LV_DIR1))	; 1  59
-	ldi r31, hi8(V(LV_DIR1))	; 1  60
+	ldi r30, lo8(V(LV_DIR1))	; 1  60
+	ldi r31, hi8(V(LV_DIR1))	; 1  61
 update:
-	lds r24, V(LV_LEAD + 3)		; 2  62
-	sbrs r24, 7			; 1  63  (2 skipping: the lead < 0, no carry)
-	adiw r30, LVD_NEG_T		; 2  65  the lead >= 0: this count carries, add -T
+	lds r24, V(LV_LEAD + 3)		; 2  63
+	sbrs r24, 7			; 1  64  (2 skipping: the lead < 0, no carry)
+	adiw r30, LVD_NEG_T		; 2  66  the lead >= 0: this count carries, add -T
 					;        (ADIW r30, 5: skipped right by simavr, below)
 	/* lead += Z[0..3] (rem or -T); then the whole steps at Z. */
-	lds r24, V(LV_LEAD)		; 2  67
-	ld r25, Z+			; 2  69
-	add r24, r25			; 1  70
-	sts V(LV_LEAD), r24		; 2  72
-	lds r24, V(LV_LEAD + 1)		; 2  74
-	ld r25, Z+			; 2  76
-	adc r24, r25			; 1  77
-	sts V(LV_LEAD + 1), r24		; 2  79
-	lds r24, V(LV_LEAD + 2)		; 2  81
-	ld r25, Z+			; 2  83
-	adc r24, r25			; 1  84
-	sts V(LV_LEAD + 2), r24		; 2  86
-	lds r24, V(LV_LEAD + 3)		; 2  88
-	ld r25, Z+			; 2  90
-	adc r24, r25			; 1  91
-	sts V(LV_LEAD + 3), r24		; 2  93
-	ld r25, Z			; 2  95  the whole steps
-	sbrs r24, 7			; 1  96  (2 skipping)
-	subi r25, 0xFF			; 1  97  the new lead >= 0: the next count carries, + 1
-	lds r24, V(LV_AHEAD)		; 2  99  this count's steps
-	sts V(LV_AHEAD), r25		; 2 101  the next one's
-	tst r24				; 1 102
-	brne steps			; 1 103
+	lds r24, V(LV_LEAD)		; 2  68
+	ld r25, Z+			; 2  70
+	add r24, r25			; 1  71
+	sts V(LV_LEAD), r24		; 2  73
+	lds r24, V(LV_LEAD + 1)		; 2  75
+	ld r25, Z+			; 2  77
+	adc r24, r25			; 1  78
+	sts V(LV_LEAD + 1), r24		; 2  80
+	lds r24, V(LV_LEAD + 2)		; 2  82
+	ld r25, Z+			; 2  84
+	adc r24, r25			; 1  85
+	sts V(LV_LEAD + 2), r24		; 2  87
+	lds r24, V(LV_LEAD + 3)		; 2  89
+	ld r25, Z+			; 2  91
+	adc r24, r25			; 1  92
+	sts V(LV_LEAD + 3), r24		; 2  94
+	ld r25, Z			; 2  96  the whole steps
+	sbrs r24, 7			; 1  97  (2 skipping)
+	subi r25, 0xFF			; 1  98  the new lead >= 0: the next count carries, + 1
+	lds r24, V(LV_AHEAD)		; 2 100  this count's steps
+	sts V(LV_AHEAD), r25		; 2 102  the next one's
+	tst r24				; 1 103
+	brne steps			; 1 104
 done:
-	pop r31				; 2 105
-	pop r30				; 2 107
+	pop r31				; 2 106
+	pop r30				; 2 108
 leave:
-	pop r25				; 2 109
-	pop r24				; 2 111
-	out SREG_IO, r24		; 1 112
-	pop r24				; 2 114
-	reti				; 4 118
+	pop r25				; 2 110
+	pop r24				; 2 112
+	out SREG_IO, r24		; 1 113
+	pop r24				; 2 115
+	reti				; 4 119
 
 back:
 	lds r24, V(LV_COUNT)		; 2
@@ -170,8 +187,9 @@ count_down:				;    bytes 1..3 - 1
 
 	/* The count's steps r24 (not 0): the first pulse is high. */
 steps:
+	brts 5f				; 1/2  catching: no pulse, the follower only
 	cbi PORTC_IO, LV_STEP_BIT	; 2  the pulse ends
-	mov r25, r24			; 1
+5:	mov r25, r24			; 1
 	lsl r25				; 1
 	sbc r25, r25			; 1  the steps' sign, 0 or 0xff
 	lds r30, F(0)			; 2  the follower's position + r24
@@ -186,7 +204,9 @@ steps:
 	lds r30, F(3)			; 2
 	adc r30, r25			; 1
 	sts F(3), r30			; 2
-	sbrc r24, 7			; 1/2
+	brtc 6f				; 1/2
+	rjmp done			; 2  catching: done
+6:	sbrc r24, 7			; 1/2
 	neg r24				; 1  steps to count: |n|
 stepped:				;    a pulse has ended: the carriage + 1 or - 1
 	mov r31, r25			; 1
@@ -235,6 +255,7 @@ reaim:
 	push r30			; 2
 	push r31			; 2
 	sts V(LV_AHEAD_DIR), r25	; 2
+	brts 2f				; 1/2  catching: the direction is the pace's
 	lds r24, V(LV_REVERSED)		; 2
 	eor r24, r25			; 1  LV_FORWARD: the steps go up
 	lsr r24				; 1
@@ -244,7 +265,7 @@ reaim:
 	sbi PORTC_IO, LV_DIR_BIT	; 2
 	sbrs r24, 0			; 1/2
 	cbi PORTC_IO, LV_DIR_BIT	; 2  the direction set: 40 cycles or more before the rise
-	ldi r30, lo8(V(LV_DIR0 + LVD_FLIP))	; 1
+2:	ldi r30, lo8(V(LV_DIR0 + LVD_FLIP))	; 1
 	ldi r31, hi8(V(LV_DIR0 + LVD_FLIP))	; 1
 	/* Not SBRC over the ADIW: simavr 1.6 takes ADIW r30, 15 (0x963f)
 	 * for a two-word CALL when it skips it and skips one word more. */
@@ -276,6 +297,7 @@ reaim:
 	lds r25, V(LV_AHEAD_DIR)	; 2
 	tst r24				; 1
 	breq 1f				; 1/2
+	brts 1f				; 1/2  catching: no step
 	sbi PORTC_IO, LV_STEP_BIT	; 2  the step rises
 1:	rjmp counted			; 2
 

@@ -9,7 +9,7 @@
  * C++ part checks every one of them against the struct (static_assert), so
  * a field moved in one place and not the other does not compile.
  *
- * The lead. While a pass is locked, the vector does not keep the follower's
+ * The lead. While a pass catches up or is locked, the vector does not keep the follower's
  * residual R (0 <= R < den) but lead = R - T, T = den - rem for the
  * direction of the last count (rem: that direction's fraction, T: what R
  * must reach for the next count in that direction to carry). lead >= 0 is
@@ -18,10 +18,10 @@
  * (R + rem - den - T = lead - T), so the next count's steps are known from
  * the sum's top byte. A reversal converts: lead += flip, flip = -T_new +
  * T_old. The entries (LatheVectorDir, one per direction) are filled by
- * engage() from the follower's steps, lead and ahead at the lock
- * (leadscrew.cpp). From the lock on, the follower's residual is stale (no C
- * code reads it: a pass that ends is reset before the next) and its position
- * exact.
+ * engage() from the follower's steps, lead and ahead at the index (the
+ * count that starts the catch-up, leadscrew.cpp). From then on the
+ * follower's residual is stale (no C code reads it: a pass that ends is
+ * reset before the next) and its position exact.
  */
 #pragma once
 
@@ -61,6 +61,7 @@
 
 /* Values of leadscrew::State and ::Stop the vector writes or compares. */
 #define LV_STATE_IDLE 0
+#define LV_STATE_CATCHING 3
 #define LV_STATE_LOCKED 4
 #define LV_STOP_LENGTH 2
 #define LV_STOP_LIMIT 3
@@ -137,7 +138,8 @@ static_assert(offsetof(LatheVectorDir, flip) == LVD_FLIP && offsetof(LatheVector
               "layout");
 static_assert(sizeof(LatheVectorDir) == LVD_SIZE, "layout");
 static_assert(sizeof(bool) == 1 && sizeof(leadscrew::State) == 1 && sizeof(leadscrew::Stop) == 1, "layout");
-static_assert(uint8_t(leadscrew::State::idle) == LV_STATE_IDLE && uint8_t(leadscrew::State::locked) == LV_STATE_LOCKED,
+static_assert(uint8_t(leadscrew::State::idle) == LV_STATE_IDLE && uint8_t(leadscrew::State::locked) == LV_STATE_LOCKED &&
+                  uint8_t(leadscrew::State::catching) == LV_STATE_CATCHING,
               "states");
 static_assert(uint8_t(leadscrew::Stop::length) == LV_STOP_LENGTH && uint8_t(leadscrew::Stop::limit) == LV_STOP_LIMIT,
               "stops");
