@@ -18,16 +18,18 @@
  * the end. A reversal (a locked count against the last one's direction)
  * converts the lead, sets the direction pin (set up by the conversion,
  * more than board::kDirSetupCycles before the rise) and precomputes, then
- * runs as a locked count. A count while not locked goes to the C vector
- * __vector_spindle_unlocked (leadscrew.cpp) with the count's direction in
- * LV_SLOW_DIR and every register as the interrupt found it.
+ * runs as a locked count. A count while neither catching up nor locked
+ * goes to the C vector __vector_spindle_unlocked (leadscrew.cpp) with the
+ * count's direction in LV_SLOW_DIR and every register as the interrupt
+ * found it.
  *
  * While the carriage catches up (the pace vector steps it), a count runs
  * the same path with the T flag set: the lead, the next count's steps and
  * the follower's position, but no step and no direction pin.
  *
- * Registers: r24, r25, SREG, and Z once the count is locked. The data is lathe_vector's
- * and lathe_follower's, by the offsets of spindle_vectors.h.
+ * Registers: r24, r25, SREG, and Z from the count's update on. The data
+ * is lathe_vector's and lathe_follower's, by the offsets of
+ * spindle_vectors.h.
  */
 #include <avr/io.h>
 
