@@ -142,7 +142,7 @@ const std::vector<Table>& engine_tables();
 std::string move_line(const Scenario& s);
 
 // The images of the size table, in its order.
-extern const char* const kSizeImages[10];
+extern const char* const kSizeImages[12];
 
 // Each part's flash and RAM, bytes.
 struct PartSize {

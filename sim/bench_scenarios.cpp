@@ -40,8 +40,8 @@ const std::vector<Table>& engine_tables() {
   return tables;
 }
 
-const char* const kSizeImages[10] = {"uno", "m32", "m32-grbl", "m32-cnc", "m32-direct", "m32-driver",
-                                     "m16", "m16-8mhz", "m16-lathe", "m16-servo"};
+const char* const kSizeImages[12] = {"uno",        "uno-grbl",   "m32",  "m32-i3",   "m32-grbl",  "m32-cnc",
+                                     "m32-direct", "m32-driver", "m16",  "m16-8mhz", "m16-lathe", "m16-servo"};
 
 // Flash an image may fill: the Uno's bootloader keeps 512 of the 328P's
 // 32768 bytes (firmware/CMakeLists.txt fails the link beyond).

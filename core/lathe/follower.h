@@ -126,6 +126,10 @@ class Follower {
   uint32_t denominator() const { return den_; }
 
  private:
+  // The lathe's spindle vectors in assembly read the position by its offset
+  // and their set-up the steps (firmware/apps/lathe/spindle_vectors.h).
+  friend struct FollowerVectorAccess;
+
   struct Step {
     uint32_t whole;  // added to the position (mod 2^32)
     uint32_t rem;    // added to the residual, < den_

@@ -52,7 +52,8 @@ constexpr uint8_t kDirSetupCycles = F_CPU / 1000000;
 // Moves and engagement: the carriage's acceleration and top rate (steps/s^2,
 // steps/s: 79 mm/s^2, 79 mm/s); a ratio of kMaxStepsPerCount steps per
 // spindle count or more is refused (the steps of one count go out as a
-// burst, 4 us a step: up to 16 of them, 64 us, below that ratio).
+// burst from the spindle vector, spindle_vectors.S: 92 cycles a step, 32
+// high and 60 low, so up to 15 of them take 86 us).
 constexpr uint32_t kLeadscrewAccel = 20000;
 constexpr uint32_t kLeadscrewMaxRate = 20000;
 constexpr uint8_t kMaxStepsPerCount = 16;

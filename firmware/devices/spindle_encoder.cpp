@@ -6,19 +6,16 @@
 
 namespace spindle_encoder {
 
-Mode mode;
-volatile int32_t count;
-volatile uint16_t lost;
-uint8_t known_a, known_b;
-
-void init(Mode m) {
+void init(Mode m, State& s) {
   const uint8_t sreg = SREG;
   cli();
   hal::ext_int::disable_int0();
   hal::ext_int::disable_int1();
-  mode = m;
-  known_a = board::SpindleEncoder::read() ? 1 : 0;
-  known_b = board::SpindleQuadratureB::read() ? 1 : 0;
+  s.mode = m;
+  static_assert(board::SpindleEncoder::port == 'D' && board::SpindleEncoder::mask == 1 << 3 &&
+                    board::SpindleQuadratureB::port == 'D' && board::SpindleQuadratureB::mask == 1 << 2,
+                "known holds A and B in PIND's bits 3 and 2");
+  s.known = PIND & uint8_t(board::SpindleEncoder::mask | board::SpindleQuadratureB::mask);
   if (m == Mode::single) {
     hal::ext_int::enable_int1(hal::ext_int::Sense::falling);
   } else {

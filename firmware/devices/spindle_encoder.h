@@ -10,15 +10,17 @@
 //     leading B (A rises while B is low). INT0 is the seed's motor-encoder
 //     input; the stepper leadscrew does not use it, so this variant of the
 //     board takes it for B (firmware/boards/m16-lathe.h claims it).
-//   on_a() / on_b() are called by the INT1 / INT0 vectors (the leadscrew's,
-//   firmware/apps/lathe/leadscrew.cpp, so the decode inlines into them) and
-//   return the count the edge makes: +1, -1 or 0; the caller adds it to
-//   `count`, the sum of every count since init() (after its own urgent work:
-//   the leadscrew's step). `lost` counts edges the decoder could not be
-//   sure of (below). The index (PD6) is read by the leadscrew at its counts.
+//   The decode runs in the lathe's spindle vectors (firmware/apps/lathe/
+//   spindle_vectors.S: INT1 for A, INT0 for B), on the State below, which
+//   the leadscrew owns (it is the first part of the vectors' data); each
+//   edge adds its count (+1, -1 or none) to `count`, the sum of every count
+//   since init() (after the vector's urgent work: the leadscrew's step).
+//   `lost` counts edges the decoder could not be sure of (below). The index
+//   (PD6) is read by the leadscrew at its counts.
 //
 // Quadrature decode
-//   The decoder keeps each channel's level in software. Channel A's vector
+//   The decoder keeps each channel's level in software (`known`: A's in bit
+//   3, B's in bit 2, PIND's positions). Channel A's vector
 //   takes the pin's level now; if it equals the level known, A changed an
 //   even number of times since its last service (the flag latches only one
 //   edge): no net count, but a pair was missed, so `lost` counts it. Else
@@ -39,33 +41,16 @@ namespace spindle_encoder {
 
 enum class Mode : uint8_t { single, quadrature };
 
-extern Mode mode;
-extern volatile int32_t count;
-extern volatile uint16_t lost;
-extern uint8_t known_a, known_b;  // the software levels (0 or 1)
+struct State {
+  Mode mode;
+  uint8_t known;           // the levels last served: A (PD3) in bit 3, B (PD2) in bit 2
+  volatile uint16_t lost;
+  volatile int32_t count;
+};
 
-void init(Mode m);
+// Selects the mode, takes the levels as they are and enables the vectors.
+void init(Mode m, State& s);
 // Counts per spindle turn the mode gives for an encoder of `lines` lines.
 inline uint16_t counts_per_line(Mode m) { return m == Mode::quadrature ? 4 : 1; }
-
-__attribute__((always_inline)) inline int8_t on_a() {
-  if (mode == Mode::single) return 1;
-  const uint8_t pins = board::SpindleEncoder::read() ? 1 : 0;
-  if (pins == known_a) {
-    lost = lost + 1;
-    return 0;
-  }
-  known_a = pins;
-  return pins != known_b ? 1 : -1;
-}
-
-__attribute__((always_inline)) inline int8_t on_b() {
-  const uint8_t b = board::SpindleQuadratureB::read() ? 1 : 0;
-  const uint8_t a = board::SpindleEncoder::read() ? 1 : 0;
-  if (b == known_b || a != known_a) lost = lost + 1;
-  if (b == known_b) return 0;
-  known_b = b;
-  return known_a == b ? 1 : -1;
-}
 
 }  // namespace spindle_encoder

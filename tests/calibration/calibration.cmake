@@ -21,7 +21,7 @@ endif()
 set(_calib_stock_faults
   irq_response irq_reentry sei_one ctc_top0 tcnt_preload tcnt_write foc oc_no_phantom
   ctc_missed_compare ctc_tov oc_event_stamp oc_port_override uart_byte_time
-  extint_level_disabled extint_level_reenable tifr_shared_clear)
+  extint_level_disabled extint_level_reenable tifr_shared_clear skip_adiw)
 
 string(REPLACE ";" "|" _calib_mcus_arg "${_calib_mcus}")
 ExternalProject_Add(calibration_programs

@@ -129,7 +129,7 @@ TEST(Bench, ParallelPageHasEveryFigureAndTheDocsPageIsCurrent) {
   std::vector<std::vector<std::string>> engine, sizes;
   stdout_rows(r.out, engine, sizes);
   ASSERT_EQ(engine.size(), 15u) << r.out;  // the scenarios of sim/bench_scenarios.cpp
-  ASSERT_EQ(sizes.size(), 10u) << r.out;  // uno, m32, m32-grbl, m32-cnc, m32-direct, m32-driver, m16, m16-8mhz, m16-lathe, m16-servo
+  ASSERT_EQ(sizes.size(), 12u) << r.out;  // sim/bench_scenarios.cpp's kSizeImages
 
   // The page's rows, in order: the same figures in the same columns (the
   // page writes "45.5 %" where the terminal writes "45.5%", and puts the
@@ -208,17 +208,17 @@ TEST(Bench, ParallelPageHasEveryFigureAndTheDocsPageIsCurrent) {
     EXPECT_EQ(p[12], "yes");  // exact
   }
 
-  // The lathe's rows ("x4 K0.5 800 32000 ...": twelve words): the figures
-  // the terminal prints, on the page.
+  // The lathe's rows ("x4 K0.5 800 0.3 32000 ...": thirteen words): the
+  // figures the terminal prints, on the page.
   std::vector<std::vector<std::string>> lathe_out, lathe_page;
   for (const std::string& line : lines_of(r.out)) {
     const std::vector<std::string> w = words(line);
-    if (w.size() == 12 && (w[0] == "x4" || w[0] == "x1")) lathe_out.push_back(w);
+    if (w.size() == 13 && (w[0] == "x4" || w[0] == "x1")) lathe_out.push_back(w);
   }
   for (const std::string& line : lines_of(page)) {
     if (line.rfind("| x4 | ", 0) == 0 || line.rfind("| x1 | ", 0) == 0) lathe_page.push_back(cells(line));
   }
-  ASSERT_EQ(lathe_out.size(), 13u) << r.out;  // sim/bench_lathe.cpp's rows
+  ASSERT_EQ(lathe_out.size(), 22u) << r.out;  // sim/bench_lathe.cpp's rows
   EXPECT_EQ(lathe_page, lathe_out) << page;
 
   // Progress: every job (the hot end, the print, a scenario, a lathe row or

@@ -25,11 +25,15 @@ if(servo_line GREATER -1)
   list(APPEND app_sources ${app_dir}/servo/leadscrew_servo.cpp)
 else()
   set(APP_PARTS devices)
+  # The spindle vectors in assembly (outside the link-time optimisation:
+  # the data they use have assembler names, spindle_vectors.h).
+  list(APPEND app_sources ${app_dir}/spindle_vectors.S)
 endif()
 # The operator panel's images (a board with kOperatorPanel, firmware/apps/
-# lathe/operator.h: m16-panel, m16-servo-panel) have the panel's devices (a
-# servo's without the spindle decoder) and no UART front end: neither the protocol nor the UART driver (whose vectors
-# would stay linked) goes into them. The others have no panel.
+# lathe/operator.h: m16-panel, m32-servo-panel) have the panel's devices (a
+# servo's without the spindle decoder) and no UART front end: neither the
+# protocol nor the UART driver (whose vectors would stay linked) goes into
+# them. The others have no panel.
 if(panel_line GREATER -1)
   if(servo_line GREATER -1)
     set(APP_FILES devices/hd44780.cpp devices/keypad.cpp)

@@ -1,17 +1,17 @@
 // The leadscrew's interrupts and its speed control (contract: leadscrew.h).
 //
-// Who writes what: the spindle vectors (INT1, INT0) run the follower and,
-// once locked, step; the pace vector (Timer1 compare A, CTC at F_CPU / 8)
-// steps moves and the catch-up at the period poll() sets; the main loop
-// starts and ends passes and moves with interrupts off. Vectors do not nest,
-// so each one sees the others' work whole.
+// Who writes what: the spindle vectors (INT1, INT0: spindle_vectors.S, in
+// assembly) decode each count, run the follower from the index on and,
+// once locked, step; any other count goes to their C part here
+// (__vector_spindle_unlocked: the index while armed); the pace vector (Timer1
+// compare A, CTC at F_CPU / 8) steps moves and the catch-up at the period
+// poll() sets; the main loop starts and ends passes and moves with
+// interrupts off. Vectors do not nest, so each one sees the others' work
+// whole. What the assembly reads and writes is lathe_vector and
+// lathe_follower (spindle_vectors.h: the layout, checked).
 //
-// Speed over size for the counts' path only (kFast: -O2): the vectors, with
-// the decoder and the step's rise inlined, and the functions they call per
-// count (the follower's update, the pulse's end, the unlocked count); the
-// rest of the file stays at the image's -Os. The update is called, not
-// inlined: inlined, every vector pushed 29 registers before its step;
-// called, 16 (docs/lathe.md, "Still missing", has what a count costs).
+// Speed over size for the counts' C path and the pace vector only (kFast:
+// -O2); the rest of the file stays at the image's -Os.
 #include "leadscrew.h"
 
 #include <avr/interrupt.h>
@@ -23,9 +23,20 @@
 #include "../../board.h"
 #include "../../devices/spindle_encoder.h"
 #include "../../engine/clock.h"
+#include "spindle_vectors.h"
 
 #define kFast __attribute__((optimize("O2")))
 #define kInline __attribute__((always_inline)) inline
+
+LatheVector lathe_vector;
+am::Follower lathe_follower asm("lathe_follower");
+
+static_assert(board::LeadStep::port == 'C' && board::LeadStep::mask == 1 << LV_STEP_BIT &&
+                  board::LeadDir::port == 'C' && board::LeadDir::mask == 1 << LV_DIR_BIT &&
+                  board::LimitSwitch::port == 'D' && board::LimitSwitch::mask == 1 << LV_LIMIT_BIT,
+              "the pins spindle_vectors.S drives and reads");
+static_assert(F_CPU == 16000000 && 3 * LV_HIGH_TURNS + 2 >= board::kStepHighCycles,
+              "a burst's pulses in spindle_vectors.S");
 
 namespace leadscrew {
 namespace {
@@ -33,20 +44,15 @@ namespace {
 using Step = board::LeadStep;
 using Dir = board::LeadDir;
 
-am::Follower follower;
-volatile State state_;
-volatile Stop stop_;
-int32_t pos_;        // the carriage, steps
-int32_t base_;       // the pass's base: target = base_ + follower.position()
-int32_t end_;        // the pass ends here (has_end_), in direction end_up_
-bool has_end_, end_up_;
-bool reversed_;      // the pass's: positive steps for a backward spindle
-bool dir_up_;        // the direction pin's level: true = +Z
+LatheVector& lv = lathe_vector;
+am::Follower& follower = lathe_follower;
+volatile State& state_ = lv.state;
+volatile Stop& stop_ = lv.stop;
+int32_t& pos_ = lv.pos;   // the carriage, steps
+int32_t base_;            // the pass's base: target = base_ + follower.position()
+int32_t& end_ = lv.end;   // the pass ends here (lv.has_end)
+bool& dir_up_ = lv.dir_up;  // the direction pin's level: true = +Z
 bool index_was_high_;
-// Locked: the steps the next count asks for if it comes in direction
-// ahead_forward_ (the last count's).
-int8_t ahead_;
-bool ahead_forward_;
 uint16_t counts_per_turn_ = board::kSpindleLines;
 
 // The pace: steps of the direction pace_dir_ (0: none) every pace_period_
@@ -92,119 +98,83 @@ __attribute__((noinline)) void halt(Stop why) {
   pace_off();
 }
 
-// The steps after the first of one count (|n| - 1 of them), each a full
-// pulse kStepLowCycles after the one before; none beyond the pass's end.
-__attribute__((noinline)) kFast void burst(int8_t n) {
-  const bool up = n > 0;
-  for (uint8_t k = uint8_t(up ? n : -n) - 1; k != 0; --k) {
-    if (has_end_ && pos_ == end_) return;
-    __builtin_avr_delay_cycles(board::kStepLowCycles);
-    Step::high();
-    __builtin_avr_delay_cycles(board::kStepHighCycles);
-    Step::low();
-    pos_ += up ? 1 : -1;
-  }
-}
+}  // namespace
+}  // namespace leadscrew
 
-// A locked count's bookkeeping: the follower's update and what the next
-// count in the same direction asks for.
-__attribute__((noinline)) kFast void locked_update(bool forward) {
-  spindle_encoder::count = spindle_encoder::count + (forward ? 1 : -1);
-  follower.edge(forward);
-  ahead_ = int8_t(follower.next_delta(forward));
-}
-
-// After a locked count's first step: the pulse ends, the others follow,
-// then the limit switch and the pass's end.
-__attribute__((noinline)) kFast void after_step(int8_t n) {
-  Step::low();
-  pos_ += n > 0 ? 1 : -1;
-  if (n > 1 || n < -1) burst(n);
-  if (!board::LimitSwitch::read()) halt(Stop::limit);
-  else if (has_end_ && pos_ == end_) halt(Stop::length);
-}
-
-// A locked count against the direction of the one before (the spindle
-// reversed): the update first, then its steps, so its latency is longer.
-__attribute__((noinline)) void reversed_count(bool forward) {
-  const int8_t n = int8_t(follower.next_delta(forward));
-  ahead_forward_ = forward;
-  if (n != 0) step_begin(n > 0);
-  __builtin_avr_delay_cycles(board::kStepHighCycles);
-  locked_update(forward);
-  if (n != 0) after_step(n);
-}
-
-// A count while not locked: the spindle's count, the follower's while
-// catching up, the index while armed.
-__attribute__((noinline)) kFast void unlocked_count(int8_t d) {
-  spindle_encoder::count = spindle_encoder::count + d;
-  if (state_ == State::catching) {
-    follower.edge(d > 0);
-  } else if (state_ == State::armed) {
+// A spindle count while neither catching up nor locked (spindle_vectors.S
+// hands it over with every register as the interrupt found it, the
+// direction in lv.slow_dir): the spindle's count, the index while armed.
+extern "C" void __vector_spindle_unlocked() __attribute__((signal, used, externally_visible)) kFast;
+void __vector_spindle_unlocked() {
+  using namespace leadscrew;
+  const bool forward = lv.slow_dir != 0;
+  lv.encoder.count = lv.encoder.count + (forward ? 1 : -1);
+  if (state_ == State::armed) {
     const bool high = board::SpindleIndex::read();
-    if (high && !index_was_high_) state_ = State::catching;
+    if (high && !index_was_high_) {
+      // s = 0: from the next count on the assembly runs the follower
+      // (spindle_vectors.h: the lead for this count's direction).
+      const LatheVectorDir& e = lv.dir[forward];
+      lv.ahead_dir = forward ? LV_FORWARD : 0;
+      lv.lead = int32_t(am::FollowerVectorAccess::residual(follower) + e.neg_t);
+      lv.ahead = int8_t(e.whole_a + (lv.lead >= 0 ? 1 : 0));
+      state_ = State::catching;
+    }
     index_was_high_ = high;
   }
 }
 
-// One spindle count, d = +1 forward or -1 backward. Locked: the count's
-// first step rises before any bookkeeping (ahead_ says what it is), and
-// locked_update() runs while the pulse is high: it takes longer than
-// kStepHighCycles (every pulse's width is measured by
-// tests/sim/test_lathe_timing.cpp).
-kInline void on_count(int8_t d) {
-  if (state_ != State::locked) return unlocked_count(d);
-  const bool forward = d > 0;
-  if (forward != ahead_forward_) return reversed_count(forward);
-  const int8_t n = ahead_;
-  if (n != 0) step_begin(n > 0);
-  locked_update(forward);
-  if (n != 0) after_step(n);
-}
-
-}  // namespace
-}  // namespace leadscrew
-
-ISR(INT1_vect) kFast;
-ISR(INT1_vect) {
-  const int8_t d = spindle_encoder::on_a();
-  if (d) leadscrew::on_count(d);
-}
-
-ISR(INT0_vect) kFast;
-ISR(INT0_vect) {
-  const int8_t d = spindle_encoder::on_b();
-  if (d) leadscrew::on_count(d);
-}
-
-// The pace: one step of a move or of the catch-up.
-ISR(TIMER1_COMPA_vect) kFast;
-ISR(TIMER1_COMPA_vect) {
-  using namespace leadscrew;
+// The pace: one step of a move or of the catch-up. Interrupts are on from
+// its first instruction (ISR_NOBLOCK), so the spindle vectors, which run
+// the follower while it catches up, wait for no more than its entry: what
+// both touch (the carriage, the follower's position, the state) is read and
+// changed with interrupts off, the lock included. Its own interrupt is
+// masked while it runs: under spindle counts at 120000/s it can take
+// longer than its period.
+namespace leadscrew {
+namespace {
+kInline void pace_event() {
   OCR1A = pace_period_;
   const int8_t d = pace_dir_;
   if (d == 0) return;
   if (!board::LimitSwitch::read()) {
-    halt(Stop::limit);
+    ATOMIC_BLOCK(ATOMIC_FORCEON) { halt(Stop::limit); }
     return;
   }
   step_begin(d > 0);
   __builtin_avr_delay_cycles(board::kStepHighCycles);
   Step::low();
-  pos_ += d;
-  if (state_ == State::catching) {
-    if (pos_ == base_ + follower.position()) {
-      ahead_forward_ = d > 0 ? !reversed_ : reversed_;
-      ahead_ = int8_t(follower.next_delta(ahead_forward_));
-      state_ = State::locked;
-      pace_off();
-    } else if (has_end_ && pos_ == end_) {
-      halt(Stop::length);
+  ATOMIC_BLOCK(ATOMIC_FORCEON) {
+    pos_ += d;
+    if (state_ == State::catching) {
+      if (pos_ == base_ + follower.position()) {
+        // Locked: the spindle vectors step from the next count on, in the
+        // direction of the last count (spindle_vectors.h: the lead and
+        // ahead are that direction's); the direction pin is set for it
+        // here, a count's vector or more before its step.
+        const bool up = (lv.ahead_dir != 0) != (lv.reversed != 0);
+        if (up != dir_up_) {
+          Dir::set(up);
+          dir_up_ = up;
+        }
+        state_ = State::locked;
+        pace_off();
+      } else if (lv.has_end && pos_ == end_) {
+        halt(Stop::length);
+      }
+    } else if (pos_ == move_target_) {
+      halt(stop_ == Stop::none ? Stop::done : stop_);  // a disengage() keeps its reason
     }
-  } else if (pos_ == move_target_) {
-    halt(stop_ == Stop::none ? Stop::done : stop_);  // a disengage() keeps its reason
   }
+}
+}  // namespace
+}  // namespace leadscrew
+
+ISR(TIMER1_COMPA_vect, ISR_NOBLOCK) kFast;
+ISR(TIMER1_COMPA_vect, ISR_NOBLOCK) {
+  HAL_TIMER1_MASK &= uint8_t(~_BV(OCIE1A));
+  leadscrew::pace_event();
+  HAL_TIMER1_MASK |= _BV(OCIE1A);
 }
 
 namespace leadscrew {
@@ -298,6 +268,21 @@ void control_tick() {
   }
 }
 
+// The spindle vectors' entries for both directions, from the follower's
+// steps (spindle_vectors.h): rem, -T = rem - den, the conversion from the
+// other direction, the whole steps. Idle: no vector reads them.
+void prime_vectors() {
+  const uint32_t den = am::FollowerVectorAccess::den(follower);
+  for (uint8_t i = 0; i < 2; ++i) {
+    LatheVectorDir& e = lv.dir[i];
+    e.rem = am::FollowerVectorAccess::rem(follower, i);
+    e.neg_t = e.rem - den;
+    e.whole_a = e.whole_b = e.whole_c = int8_t(am::FollowerVectorAccess::whole(follower, i));
+  }
+  lv.dir[1].flip = lv.dir[1].neg_t - lv.dir[0].neg_t;
+  lv.dir[0].flip = 0u - lv.dir[1].flip;
+}
+
 void start_pace_clock() {
   velocity_ = 0;
   pace_dir_ = 0;
@@ -330,12 +315,12 @@ Refusal engage(const am::Ratio& ratio, bool reversed, int32_t length_steps, uint
   if (ratio.den == 0 || ratio.num / ratio.den >= board::kMaxStepsPerCount) return Refusal::too_steep;
   if (!board::LimitSwitch::read()) return Refusal::limit;
   if (!follower.reset(ratio, reversed, am::start_phase(start, starts, counts_per_turn_))) return Refusal::phase_range;
+  prime_vectors();
   ATOMIC_BLOCK(ATOMIC_RESTORESTATE) {
     base_ = pos_;
-    reversed_ = reversed;
-    end_up_ = !reversed;
+    lv.reversed = reversed ? LV_FORWARD : 0;
     end_ = reversed ? pos_ - length_steps : pos_ + length_steps;
-    has_end_ = length_steps != 0;
+    lv.has_end = length_steps != 0;
     index_was_high_ = true;  // the index must be seen low at a count, then high
     stop_ = Stop::none;
     const int32_t t = base_ + follower.position();
@@ -402,13 +387,13 @@ int16_t spindle_rpm() { return rpm.rpm(); }
 
 int32_t spindle_count() {
   int32_t c;
-  ATOMIC_BLOCK(ATOMIC_RESTORESTATE) { c = spindle_encoder::count; }
+  ATOMIC_BLOCK(ATOMIC_RESTORESTATE) { c = lv.encoder.count; }
   return c;
 }
 
 uint16_t lost_counts() {
   uint16_t n;
-  ATOMIC_BLOCK(ATOMIC_RESTORESTATE) { n = spindle_encoder::lost; }
+  ATOMIC_BLOCK(ATOMIC_RESTORESTATE) { n = lv.encoder.lost; }
   return n;
 }
 
@@ -418,7 +403,7 @@ bool set_encoder(bool quadrature, uint16_t lines) {
   const uint32_t counts = uint32_t(lines) * spindle_encoder::counts_per_line(m);
   if (counts > 0xFFFF) return false;
   counts_per_turn_ = uint16_t(counts);
-  spindle_encoder::init(m);
+  spindle_encoder::init(m, lv.encoder);
   rpm.reset(spindle_count());
   return true;
 }
