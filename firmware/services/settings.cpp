@@ -254,20 +254,15 @@ void change(const char* text) {
   commit(b);
 }
 
-void marlin(uint16_t code, char* words) {
+namespace {
+
+// M92 M201 M203 M205 M500 M502 (marlin()): their block on this frame alone,
+// so no second one is on the stack below it (list() and boot() have theirs).
+[[gnu::noinline]] void marlin_change(uint16_t code, char* words) {
   Values b;
-  if (code == 501) {  // the block as at boot: its defaults and its line if it is bad
-    const char* news = boot();
-    if (news) reply::info_P(news);
-    return reply::ok();
-  }
   if (code == 502) {
     defaults(b);
     return commit(b);
-  }
-  if (code == 503) {
-    list(true);
-    return reply::ok();
   }
   read(b);
   // M500 stores the settings in force (what the EEPROM holds already,
@@ -292,6 +287,19 @@ void marlin(uint16_t code, char* words) {
     if (e != Error::none) return refuse(e);
   }
   commit(b);
+}
+
+}  // namespace
+
+void marlin(uint16_t code, char* words) {
+  if (code == 501) {  // the block as at boot: its defaults and its line if it is bad
+    const char* news = boot();
+    if (news) reply::info_P(news);
+    return reply::ok();
+  }
+  if (code != 503) return marlin_change(code, words);
+  list(true);
+  reply::ok();
 }
 
 }  // namespace settings

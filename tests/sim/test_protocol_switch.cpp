@@ -363,4 +363,19 @@ TEST(ProtocolSwitch, M112HaltsUntilReset) {
   EXPECT_LT(m->axis('X')->steps(), 5 * m->axis('X')->steps_per_mm);
 }
 
+// The settings codes read the block onto the stack (126 bytes, one at a
+// time): a Marlin session of all of them, behind motion, stays clear of the
+// static data with room to spare (an M503 once held two blocks at once and
+// reached it).
+TEST(ProtocolSwitch, TheSettingsCodesLeaveTheStackRoom) {
+  auto m = machine();
+  send(*m, {"$200=1"});
+  m->serial().set_marlin(true);
+  send(*m, {"G1 X20 Y10 F1200", "M503", "M92 X80 Y80", "M501", "M502", "M500", "M203 X20", "M201 Y100", "M205 J0.02",
+            "$$", numbered(1, "M115"), "G1 X0 Y0 F1200", "M503"});
+  for (const sim::Response& r : m->serial().responses()) EXPECT_TRUE(sim::SerialHost::is_ok(r.answer)) << r.line;
+  std::printf("stack %u of %u bytes free\n", m->stack_bytes(), m->free_ram());
+  EXPECT_LT(m->stack_bytes() + 100, m->free_ram());
+}
+
 }  // namespace
