@@ -249,6 +249,8 @@ void change(const char* text) {
     for (; *text >= '0' && *text <= '9' && digits < 4; ++text, ++digits) n = uint16_t(n * 10 + (*text - '0'));
     Error e = Error::unknown;
     if (digits && *text == '=') e = Table::set(b, n, text + 1, engine());
+    // The style is settable only where both are in the image.
+    if (!board::kProtocolSwitch && n == 200 && e == Error::none) e = Error::read_only;
     if (e != Error::none) return refuse(e);
   }
   commit(b);
