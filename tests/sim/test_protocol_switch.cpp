@@ -10,11 +10,15 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "board_info.h"
+#include "printcore_run.h"
+#include "pty_client.h"
 #include "sim_fixture.h"
 
 namespace {
@@ -404,6 +408,86 @@ TEST(ProtocolSwitch, TheSettingsCodesLeaveTheStackRoom) {
   for (const sim::Response& r : m->serial().responses()) EXPECT_TRUE(sim::SerialHost::is_ok(r.answer)) << r.line;
   std::printf("stack %u of %u bytes free\n", m->stack_bytes(), m->free_ram());
   EXPECT_LT(m->stack_bytes() + 100, m->free_ram());
+}
+
+// A real Marlin host: printrun's printcore (as test_printcore.cpp, against
+// the m32 printer) prints a small file on the m32-direct through
+// `avrmotion-sim --pty`, its EEPROM that of a machine after `$200=1`: the
+// banner is Marlin's, every line numbered and checksummed, one broken
+// checksum asked for again, every line acknowledged once, the axes on the
+// file's last targets.
+TEST(ProtocolSwitch, PrintcorePrintsOnTheSwitchedImage) {
+  auto first = machine();
+  send(*first, {"$200=1"});
+  const std::vector<uint8_t> ee = eeprom_of(*first);
+  const std::string eeprom = simtest::temp_path("switch.eeprom"), file = simtest::temp_path("switch.gcode"),
+                    report = simtest::temp_path("switch.json");
+  std::ofstream(eeprom, std::ios::binary).write(reinterpret_cast<const char*>(ee.data()), long(ee.size()));
+  // Three layers of a 24-gon with extrusion, in thousandths (exact steps at
+  // any whole steps/mm), absolute E reset per layer.
+  std::vector<std::string> lines = {"G21", "G90", "M82", "G92 E0"};
+  long x = 0, y = 0, z = 0, e_total = 0;
+  const auto mm = [](long um) { return mm3(double(um) / 1000); };
+  for (int layer = 0; layer < 3; ++layer) {
+    z = 200 * (layer + 1);
+    lines.push_back("G1 Z" + mm(z) + " F600");
+    long e = 0;
+    for (int k = 0; k <= 24; ++k) {
+      const double a = 2 * 3.14159265358979 * k / 24 + layer;
+      x = 10000 + long(std::lround(5000 * std::cos(a)));
+      y = 10000 + long(std::lround(5000 * std::sin(a)));
+      if (k) e += 130 + k % 7;
+      lines.push_back("G1 X" + mm(x) + " Y" + mm(y) + (k ? " E" + mm(e) : "") + " F1800");
+    }
+    e_total += e;
+    lines.push_back("G92 E0");
+  }
+  lines.push_back("M84");
+  {
+    std::ofstream out(file);
+    for (const std::string& l : lines) out << l << "\n";
+  }
+  ptytest::SimProcess sim({"--board", kImage, "--eeprom", eeprom, "--pty", "--speed", "max", "--linger", "1",
+                           "--max-seconds", "120", "--report", report});
+  const std::string port = sim.pty_path();
+  ASSERT_FALSE(port.empty()) << sim.stderr_text();
+  const long corrupt = long(lines.size() / 2);
+  const std::string summary = printcore_run::stream(port, file, "--corrupt " + std::to_string(corrupt));
+  std::printf("printcore on the m32-direct: %s\n", summary.c_str());
+  ASSERT_EQ(sim.wait_exit(), 0) << sim.stderr_text();
+  const std::string json = simtest::slurp(report);
+  std::remove(eeprom.c_str());
+  std::remove(file.c_str());
+  std::remove(report.c_str());
+  EXPECT_EQ(ptytest::report_string(json, "banner"), "\"start\"") << json;
+  EXPECT_NE(summary.find("\"errors\": [\"Error:checksum mismatch, Last Line: " + std::to_string(corrupt - 1) + "\"]"),
+            std::string::npos)
+      << summary;
+  EXPECT_NE(summary.find("\"resends\": [" + std::to_string(corrupt) + "]"), std::string::npos) << summary;
+  const long sent = printcore_run::summary_number(summary, "sent"), oks = printcore_run::summary_number(summary, "oks");
+  const long m105 = printcore_run::summary_number(summary, "m105_sent");
+  EXPECT_EQ(sent, long(lines.size()) + 2 + 1 + 1) << summary;  // the file, two M110, the resend, M400
+  // Every line printcore sent has one `ok`; its M105 at the open (the MCU
+  // may still boot) an `ok` too if it was heard (no heater: Marlin's
+  // unknown command, no `ok T:`).
+  EXPECT_GE(oks, sent) << summary;
+  EXPECT_LE(oks, sent + m105) << summary;
+  const long m105_lost = m105 - (oks - sent);  // sent while the MCU booted, not heard
+  EXPECT_EQ(long(ptytest::report_number(json, "", "lines_answered")),
+            long(ptytest::report_number(json, "", "lines_sent")) - m105_lost)
+      << json;
+  // The targets in steps at the image's own scale (its descriptor; whole
+  // thousandths of a mm at whole thousandths of steps/mm: exact).
+  const am::BoardDescriptor board = sim::read_board_descriptor(simtest::image(kImage));
+  const auto steps = [&](char axis, long um) {
+    for (uint8_t i = 0; i < board.axis_count; ++i)
+      if (board.axes[i].name == axis) return double(um) * double(board.axes[i].steps_per_m) / 1e6;
+    return -1.0;
+  };
+  EXPECT_EQ(ptytest::report_number(json, "X", "steps"), steps('X', x)) << json;
+  EXPECT_EQ(ptytest::report_number(json, "Y", "steps"), steps('Y', y));
+  EXPECT_EQ(ptytest::report_number(json, "Z", "steps"), steps('Z', z));
+  EXPECT_EQ(ptytest::report_number(json, "E", "steps"), steps('E', e_total));
 }
 
 // What the two styles cost, and what the images that keep one are: the
