@@ -76,6 +76,10 @@ namespace board {
 using namespace board_defaults;
 }  // namespace board
 
+// The style is chosen by a setting, so a board that switches styles keeps
+// the settings.
+static_assert(!board::kProtocolSwitch || board::kSettings, "kProtocolSwitch needs kSettings ($200)");
+
 // Every board lists its hardware claims; completing the type runs their
 // compile-time checks (hal/avr/claims.h).
 static_assert(sizeof(board::Claims) > 0, "board::Claims");

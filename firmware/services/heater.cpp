@@ -72,7 +72,10 @@ uint32_t report_period, next_report;  // ticks; 0: no auto-report
 void halt() {
   halted = true;
   target_ = 0;
-  reply::error_begin();  // grbl: info_begin()'s `[MSG:`
+  if (reply::marlin())
+    reply::error_begin();
+  else
+    reply::info_begin();
   hal::uart::write_P(fault_text());
   hal::uart::write_P(PSTR(", heater halted until reset"));
   if (reply::marlin()) hal::uart::write('\n');

@@ -392,10 +392,12 @@ void on_line(Reader::Line kind) {
   if (marlin()) {
     line = numbered(line);
     if (!line || marlin_code(line)) return;
+  } else if (!board::kProtocolSwitch && grbl_system(line)) {
+    return;
   }
-  // grbl's `$` lines; with both styles in the image, in Marlin's too (the
-  // way back: `$200=0`).
-  if ((!marlin() || board::kProtocolSwitch) && grbl_system(line)) return;
+  // With both styles in the image, grbl's `$` lines in either (the way back
+  // from Marlin's: `$200=0`).
+  if (board::kProtocolSwitch && grbl_system(line)) return;
   if (board::kSettings && settings_code(line)) return;
   if (board::kGcode && gcode::claims(line)) {
     if (gcode::accept(line)) hold(Waiting::gcode);

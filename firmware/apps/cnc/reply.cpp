@@ -29,8 +29,10 @@ void info_P(const char* progmem_text) {
 }
 
 void error_begin() {
-  if (!marlin()) return info_begin();  // grbl: the reason as an info line, `[MSG:`
-  hal::uart::write_P(PSTR("Error:"));
+  // grbl: the reason as an info line, `[MSG:` (one copy of the text where
+  // both styles are in the image; the others keep their own layout).
+  if (board::kProtocolSwitch && !marlin()) return info_begin();
+  hal::uart::write_P(marlin() ? PSTR("Error:") : PSTR("[MSG:"));
 }
 
 void error_end(uint8_t grbl_code) {
