@@ -5,8 +5,12 @@
 #include <stdint.h>
 
 // The line protocol's style (docs/protocol.md): grbl 1.1 for CNC senders,
-// Marlin for printer hosts. One style per image: both would not fit the
-// 32 KB parts' flash, so the switch is the board constant `kProtocol`.
+// Marlin for printer hosts. The board constant `kProtocol` is the image's
+// style; an image holds one style only (the compiler drops the other's
+// code: both do not fit beside a printer's codes in 32 KB), except where
+// the board sets `kProtocolSwitch` (the m32-direct): both styles are then
+// in the image and the settings' `$200` chooses at run time, `kProtocol`
+// being its default.
 enum class Protocol : uint8_t { grbl, marlin };
 
 #include AVRMOTION_BOARD_HEADER
@@ -41,6 +45,11 @@ constexpr bool kOdometer = true;
 // and never put into a line.
 constexpr bool kRealtime = false;
 constexpr Protocol kProtocol = Protocol::grbl;
+// Both styles in the image, chosen by the setting `$200` (stored in the
+// EEPROM, applied at boot; kProtocol the default): only with kSettings
+// (docs/protocol.md, "Choosing the style at run time"). Without it the
+// style is the constant and reply::marlin() folds at compile time.
+constexpr bool kProtocolSwitch = false;
 // The direct controls MOVE, POS, WAIT, RELEASE, MODE (docs/protocol.md)
 // beside G-code; about 2 KB of flash.
 constexpr bool kCommands = true;
@@ -75,6 +84,10 @@ struct ServoMotor;  // kPulses, kGearbox, kGains: only with kServoLeadscrew
 namespace board {
 using namespace board_defaults;
 }  // namespace board
+
+// The style is chosen by a setting, so a board that switches styles keeps
+// the settings.
+static_assert(!board::kProtocolSwitch || board::kSettings, "kProtocolSwitch needs kSettings ($200)");
 
 // Every board lists its hardware claims; completing the type runs their
 // compile-time checks (hal/avr/claims.h).

@@ -13,6 +13,9 @@
 #include <string>
 #include <vector>
 
+#include <avr_eeprom.h>
+#include <sim_avr.h>
+
 #include "dc_servo.h"
 #include "endstops.h"
 #include "keypad_model.h"
@@ -32,7 +35,7 @@ namespace {
 void usage() {
   std::cerr << "usage: avrmotion-sim (--board NAME | --elf FILE) [--input FILE|-] [--report FILE]\n"
                "                     [--plot FILE.svg] [--vcd FILE.vcd [--vcd-signals LIST]]\n"
-               "                     [--max-seconds S] [--progress]\n"
+               "                     [--max-seconds S] [--progress] [--eeprom FILE]\n"
                "       avrmotion-sim (--board NAME | --elf FILE) --pty [--link PATH] [--speed N|max] [--linger S]\n"
                "                     [--report FILE] [--plot FILE.svg] [--vcd ...] [--max-seconds S] [--progress]\n"
                "                     [--thermal-initial C] [--thermal-fault NAME@S] [--thermal-fan F@S]\n"
@@ -48,6 +51,8 @@ void usage() {
                "  --max-seconds S     simulated-time budget (default 120; --pty: none, counted from the\n"
                "                      first open); exit 3 when spent\n"
                "  --progress          progress on standard error about once a second, and at the end\n"
+               "  --eeprom FILE       the EEPROM's first bytes from FILE at power-up (a board's stored\n"
+               "                      settings, docs/settings.md); they live through every reset\n"
                "  --pty               the UART as a pseudo-terminal (its path on standard error) instead of\n"
                "                      --input; each open resets the MCU; ends when the client has closed\n"
                "  --link PATH         also a symlink PATH to the pseudo-terminal\n"
@@ -112,6 +117,7 @@ int main(int argc, char** argv) {
   sim::EndstopParams endstop_params;
   bool no_endstops = false;
   std::string lcd_file;
+  std::string eeprom_file;
   std::vector<std::pair<std::string, double>> key_script;
   sim::SpindleParams spindle;
   spindle.profile.clear();
@@ -155,6 +161,7 @@ int main(int argc, char** argv) {
       }
     } else if (a == "--no-endstops") no_endstops = true;
     else if (a == "--lcd") lcd_file = value();
+    else if (a == "--eeprom") eeprom_file = value();
     else if (a == "--keys") {
       std::string keys;
       double at = 0;
@@ -228,6 +235,17 @@ int main(int argc, char** argv) {
   try {
     sim::Machine machine(elf);
     const uint64_t budget = uint64_t(max_seconds * machine.f_cpu());
+    if (!eeprom_file.empty()) {
+      std::ifstream in(eeprom_file, std::ios::binary);
+      std::vector<uint8_t> bytes;
+      if (in) bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+      if (bytes.empty()) {
+        std::cerr << "avrmotion-sim: cannot read the EEPROM bytes of " << eeprom_file << "\n";
+        return 2;
+      }
+      avr_eeprom_desc_t d{bytes.data(), 0, uint32_t(bytes.size())};
+      avr_ioctl(machine.avr(), AVR_IOCTL_EEPROM_SET, &d);  // (answers -1 whether it worked or not)
+    }
     std::unique_ptr<sim::VcdRecorder> trace;
     sim::RunEnd end;
     sim::PtyStats stats;

@@ -88,6 +88,10 @@ class SerialHost {
   // (pos, info lines, a refusal's reason line).
   std::vector<std::string> messages() const;
   bool marlin() const { return marlin_; }
+  // The firmware has changed its style since its banner (the m32-direct's
+  // setting `$200`, docs/protocol.md): its answers from now on are read in
+  // the other style.
+  void set_marlin(bool marlin) { marlin_ = marlin; }
   size_t banner_lines_ = 2;  // 1 for the lathe's one-line banner
 
  private:

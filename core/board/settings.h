@@ -19,7 +19,7 @@
 //     $110+a     max rate, mm/min                  1 .. 1000000
 //     $120+a     acceleration, mm/s^2              1 .. 1000000
 //     $130+a     max travel, mm (axis a's switch)  1 .. 100000
-//     $200       the protocol style, read-only (0 grbl, 1 Marlin)
+//     $200       the protocol style, 0 grbl, 1 Marlin
 //     $240+a     homing locate feed, mm/min        1 .. 1000000
 //     $250+a     homing seek feed, mm/min          1 .. 1000000
 //     $270+a     homing pull-off, mm               0 .. 1000
@@ -104,7 +104,7 @@ struct KindRows {
 template <bool B>
 const uint8_t KindRows<B>::row[uint8_t(Kind::end)][3] AM_SETTINGS_FLASH = {
     {11, 0, 0x14},  {20, 0, 0x40},  {21, 0, 0xCF},  {22, 0, 0x40},  {23, 0, 0xCF}, {100, 0, 0x27},
-    {110, 0, 0x29}, {120, 0, 0x29}, {130, 0, 0x28}, {200, 0, 0xCF}, {240, 0, 0x29}, {250, 0, 0x29},
+    {110, 0, 0x29}, {120, 0, 0x29}, {130, 0, 0x28}, {200, 0, 0x40}, {240, 0, 0x29}, {250, 0, 0x29},
     {14, 1, 0x06},  {44, 1, 0x06},  {45, 1, 0x06},  {46, 1, 0x07}};
 using KindTable = KindRows<>;
 inline uint8_t traits(Kind k) { return AM_SETTINGS_BYTE(&KindTable::row[uint8_t(k)][2]); }
@@ -322,8 +322,10 @@ struct Layout {
   }
 
   // Setting `n` to the number at `text` (the rest of the line: nothing may
-  // follow the number). The header and sum are left to seal().
-  static Error set(Values& b, uint16_t n, const char* text, const EngineLimits<Axes>& limits) {
+  // follow the number), or with `per_second` 60 times it (Marlin's M203
+  // gives mm/s for a setting in mm/min). The header and sum are left to
+  // seal().
+  static Error set(Values& b, uint16_t n, const char* text, const EngineLimits<Axes>& limits, bool per_second = false) {
     const int16_t i = find(n);
     if (i < 0) return Error::unknown;
     const Kind k = at(uint8_t(i)).kind;
@@ -333,8 +335,9 @@ struct Layout {
     const NumberStatus s = parse_fixed(text, digits(k), v, point);
     if (s == NumberStatus::bad || (s == NumberStatus::ok && (*text != '\0' || (point && !digits(k)))))
       return Error::bad_number;
-    if (s != NumberStatus::ok || v < 0 || !in_range(k, uint32_t(v)))
-      return Error::out_of_range;
+    if (s != NumberStatus::ok || v < 0 || (per_second && v > 0x7FFFFFFF / 60)) return Error::out_of_range;
+    if (per_second) v *= 60;
+    if (!in_range(k, uint32_t(v))) return Error::out_of_range;
     const uint32_t was = b.value[i];
     b.value[i] = uint32_t(v);
     const Error e = validate(b, limits);

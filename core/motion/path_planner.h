@@ -218,8 +218,8 @@ class PathPlanner {
   void done() {
     if (taken_ == 0) return;
     tail_ = index(1);
+    --taken_;  // before count_: taken_ <= count_ at every instant (a probe reads both mid-update)
     --count_;
-    --taken_;
   }
 
   void clear() { tail_ = count_ = taken_ = planned_ = 0; }

@@ -9,7 +9,7 @@
 namespace am {
 
 // The arc from state_ (start) to a.coord[] (end), into a; m: the line's modes.
-template <uint8_t N, bool Arcs, bool Heater, bool MarlinDwell, bool Modes, bool Printer, bool Retract>
+template <uint8_t N, bool Arcs, bool Heater, uint8_t MarlinDwell, bool Modes, bool Printer, bool Retract>
 GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes, Printer, Retract>::arc(const GcodeBlock& b, const GcodeModal& m, GcodeAction<N>& a) const {
   using namespace gcode_detail;
   const uint32_t letters = plane_axes(m.plane);

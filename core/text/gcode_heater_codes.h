@@ -31,7 +31,7 @@ inline bool whole_in(int32_t v, uint8_t lo, uint8_t hi, uint8_t& out) {
 }  // namespace gcode_detail
 
 // A heater M-code line (see Heater codes); nothing in the state changes.
-template <uint8_t N, bool Arcs, bool Heater, bool MarlinDwell, bool Modes, bool Printer, bool Retract>
+template <uint8_t N, bool Arcs, bool Heater, uint8_t MarlinDwell, bool Modes, bool Printer, bool Retract>
 GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes, Printer, Retract>::heater(const GcodeBlock& b,
                                                                                   GcodeAction<N>& a) const {
   const GcodeCode code = b.group(GcodeGroup::machine);

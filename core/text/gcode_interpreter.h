@@ -12,6 +12,9 @@
 //   heater M-code is no_heater and their checks are not linked.
 //   GcodeInterpreter<N, A, H, true> reads G4's words as Marlin does (a
 //   printer host's dialect): P milliseconds, S seconds (S wins if both).
+//   GcodeInterpreter<N, A, H, kDwellChosen> reads them one way or the
+//   other as set_marlin_dwell() last said (an image with both protocol
+//   styles, chosen at run time; NGC's until then).
 //   GcodeInterpreter<N, A, H, D, false> serves axes without excitation
 //   modes (step/dir drivers set their microsteps in hardware): M350 is then
 //   unsupported_code, as in a Marlin built without microstep pins, and none
@@ -150,7 +153,10 @@ struct GcodeRetractionSlot {
 template <>
 struct GcodeRetractionSlot<false> {};
 
-template <uint8_t N, bool Arcs = true, bool Heater = true, bool MarlinDwell = false, bool Modes = true,
+// MarlinDwell: 0 (false) NGC's G4, 1 (true) Marlin's, kDwellChosen either at run time.
+constexpr uint8_t kDwellChosen = 2;
+
+template <uint8_t N, bool Arcs = true, bool Heater = true, uint8_t MarlinDwell = 0, bool Modes = true,
           bool Printer = Heater, bool Retract = false>
 class GcodeInterpreter : private GcodeRetractionSlot<Retract> {  // empty without Retract: no RAM
   static_assert(N >= 1 && N <= 8, "one bit per axis in GcodeAction::axes");
@@ -224,11 +230,16 @@ class GcodeInterpreter : private GcodeRetractionSlot<Retract> {  // empty withou
 
   GcodeError execute(const GcodeBlock& b, GcodeAction<N>& a);
 
+  // G4 as Marlin reads it from now on, or as NGC (MarlinDwell kDwellChosen).
+  static void set_marlin_dwell(bool marlin) { marlin_dwell_ = marlin; }
+
   // The firmware retraction's settings and state (Retract only).
   using Retraction = GcodeRetraction;
   const Retraction& retraction() const { return this->value; }
 
  private:
+  static bool marlin_dwell_;
+  static bool marlin_dwell() { return MarlinDwell == 1 || (MarlinDwell == kDwellChosen && marlin_dwell_); }
   GcodeError arc(const GcodeBlock& b, const GcodeModal& m, GcodeAction<N>& a) const;
   GcodeError heater(const GcodeBlock& b, GcodeAction<N>& a) const;
   GcodeError printer(const GcodeBlock& b, GcodeAction<N>& a) const;
@@ -276,7 +287,10 @@ class GcodeInterpreter : private GcodeRetractionSlot<Retract> {  // empty withou
   uint16_t flow_ = 100;  // M221: percent of every E move's steps (a printer's)
 };
 
-template <uint8_t N, bool Arcs, bool Heater, bool MarlinDwell, bool Modes, bool Printer, bool Retract>
+template <uint8_t N, bool Arcs, bool Heater, uint8_t MarlinDwell, bool Modes, bool Printer, bool Retract>
+bool GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes, Printer, Retract>::marlin_dwell_ = false;
+
+template <uint8_t N, bool Arcs, bool Heater, uint8_t MarlinDwell, bool Modes, bool Printer, bool Retract>
 GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes, Printer, Retract>::execute(const GcodeBlock& b,
                                                                                           GcodeAction<N>& a) {
   using namespace gcode_detail;
@@ -332,7 +346,8 @@ GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes, Printer, Retrac
   const bool arc_mode = m.motion >= Motion::arc_cw;
 
   // Required words, then unused ones.
-  constexpr uint32_t kDwellWords = gcode_letter_bit('P') | (MarlinDwell ? gcode_letter_bit('S') : 0);
+  const bool marlin_g4 = marlin_dwell();
+  const uint32_t kDwellWords = gcode_letter_bit('P') | (marlin_g4 ? gcode_letter_bit('S') : 0);
   if (dwell && !(words & kDwellWords)) return GcodeError::missing_dwell_time;
   if (((set_position || set_mode) && !axis_words) || (arc_mode && actions == 0 && (words & kArcWords)))
     return GcodeError::missing_axis_word;
@@ -397,8 +412,8 @@ GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes, Printer, Retrac
   GcodeActionKind kind = GcodeActionKind::none;
   if (dwell) {
     // 1/10000 s, or Marlin's P in 1/10000 ms (its S in seconds wins).
-    const bool ms = MarlinDwell && !b.has('S');
-    const int32_t p = b.get(ms ? 'P' : MarlinDwell ? 'S' : 'P');
+    const bool ms = marlin_g4 && !b.has('S');
+    const int32_t p = b.get(ms ? 'P' : marlin_g4 ? 'S' : 'P');
     if (p < 0) return GcodeError::out_of_range;
     a.dwell_ms = ms ? (uint32_t(p) + 5000) / 10000 : (uint32_t(p) + 5) / 10;
     kind = GcodeActionKind::dwell;

@@ -10,7 +10,7 @@
 
 namespace am {
 
-template <uint8_t N, bool Arcs, bool Heater, bool MarlinDwell, bool Modes, bool Printer, bool Retract>
+template <uint8_t N, bool Arcs, bool Heater, uint8_t MarlinDwell, bool Modes, bool Printer, bool Retract>
 GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes, Printer, Retract>::printer(const GcodeBlock& b,
                                                                                    GcodeAction<N>& a) const {
   const GcodeCode code = b.group(GcodeGroup::machine);

@@ -29,7 +29,7 @@
 
 namespace am {
 
-template <uint8_t N, bool Arcs, bool Heater, bool MarlinDwell, bool Modes, bool Printer, bool Retract>
+template <uint8_t N, bool Arcs, bool Heater, uint8_t MarlinDwell, bool Modes, bool Printer, bool Retract>
 GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes, Printer, Retract>::retract(
     const GcodeBlock& b, GcodeAction<N>& a, bool out, RetractionSlot<true>& slot) {
   using namespace gcode_detail;
@@ -71,7 +71,7 @@ GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes, Printer, Retrac
   return GcodeError::none;
 }
 
-template <uint8_t N, bool Arcs, bool Heater, bool MarlinDwell, bool Modes, bool Printer, bool Retract>
+template <uint8_t N, bool Arcs, bool Heater, uint8_t MarlinDwell, bool Modes, bool Printer, bool Retract>
 GcodeError GcodeInterpreter<N, Arcs, Heater, MarlinDwell, Modes, Printer, Retract>::retract_settings(
     const GcodeBlock& b, bool recover, RetractionSlot<true>& slot) {
   using namespace gcode_detail;

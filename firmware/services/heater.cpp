@@ -72,11 +72,13 @@ uint32_t report_period, next_report;  // ticks; 0: no auto-report
 void halt() {
   halted = true;
   target_ = 0;
-  if (reply::kMarlin) hal::uart::write_P(PSTR("Error:"));
-  else reply::info_begin();
+  if (reply::marlin())
+    reply::error_begin();
+  else
+    reply::info_begin();
   hal::uart::write_P(fault_text());
   hal::uart::write_P(PSTR(", heater halted until reset"));
-  if (reply::kMarlin) hal::uart::write('\n');
+  if (reply::marlin()) hal::uart::write('\n');
   else reply::info_end();
 }
 
@@ -209,9 +211,9 @@ void write_centi(int32_t c) {
 }
 
 void write_status_line() {
-  if (!reply::kMarlin) reply::info_begin();
+  if (!reply::marlin()) reply::info_begin();
   write_status();
-  if (reply::kMarlin) hal::uart::write('\n');
+  if (reply::marlin()) hal::uart::write('\n');
   else reply::info_end();
 }
 

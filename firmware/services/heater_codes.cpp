@@ -28,7 +28,7 @@ void write_gain(const char* progmem_label, uint32_t milli) {
 // The gains after a head: Marlin's own line (`echo: p:.. i:.. d:..` and the
 // like), or `[MSG:<label>p:.. i:.. d:..]` in grbl style.
 void write_gains(const char* progmem_marlin_head, const char* progmem_grbl_label, const am::PidGains& g) {
-  if (reply::kMarlin) {
+  if (reply::marlin()) {
     hal::uart::write_P(progmem_marlin_head);
   } else {
     reply::info_begin();
@@ -37,7 +37,7 @@ void write_gains(const char* progmem_marlin_head, const char* progmem_grbl_label
   write_gain(PSTR("p:"), g.kp_milli);
   write_gain(PSTR(" i:"), g.ki_milli);
   write_gain(PSTR(" d:"), g.kd_milli);
-  if (reply::kMarlin) hal::uart::write('\n');
+  if (reply::marlin()) hal::uart::write('\n');
   else reply::info_end();
 }
 
@@ -116,7 +116,7 @@ bool run(const am::GcodeHeaterCommand& c) {
       if (!board::kAutotune || (!waiting && !autotune(c.target, c.count))) return refuse_halted();
       return wait_turn(c);
     case am::GcodeCode::m105:  // Marlin: `ok T:...`; grbl: the status, then `ok`
-      if (reply::kMarlin) {
+      if (reply::marlin()) {
         hal::uart::write_P(PSTR("ok "));
         write_status_line();
       } else {

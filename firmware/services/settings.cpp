@@ -98,8 +98,8 @@ void defaults(Values& b) {
       v = rate_mm(top_rate(e.axis), spm);
     else if (e.kind == Kind::accel)
       v = accel_mm(board::kDefaultAccel, spm);
-    else if (e.kind == Kind::protocol)
-      v = uint32_t(board::kProtocol);
+    else if (e.kind == Kind::protocol)  // the style in force: the board's at boot, kept by $RST=$ and M502
+      v = board::kProtocolSwitch ? uint32_t(reply::marlin()) : uint32_t(board::kProtocol);
     else if (board::kHeater && e.kind >= Kind::gain_p)
       v = e.kind == Kind::gain_p ? 22200 : e.kind == Kind::gain_i ? 1080 : 114000;  // Marlin's DEFAULT_Kp/Ki/Kd
     else
@@ -137,6 +137,7 @@ void apply(const Values& b) {
   }
   gcode::rescale();
   path::set_junction_um(value<Kind::junction>(b));
+  reply::set_marlin(value<Kind::protocol>(b) != 0);  // from the next line on (board::kProtocolSwitch)
   if (!Endstops::count) return;
   limits::soft_limits = value<Kind::soft_limits>(b) != 0;
   limits::homing_enabled = value<Kind::homing>(b) != 0;
@@ -176,14 +177,64 @@ const char* boot() {
                                 : nullptr;
 }
 
-void list() {
+namespace {
+
+void refuse(Error e) {
+  const uint8_t n = uint8_t(e) - 1;
+  reply::error(pgm_read_byte(&kRefusalCode[n]), reinterpret_cast<const char*>(pgm_read_word(&kRefusal[n])));
+}
+
+// A changed block: stored, applied and answered.
+void commit(Values& b) {
+  store(b);
+  apply(b);
+  reply::ok();
+}
+
+// M503's value: thousandths with three decimals.
+void write_value(uint32_t v) {
+  char buf[14];
+  am::format_fixed(buf, int32_t(v), 3);
+  hal::uart::write(buf);
+}
+
+}  // namespace
+
+// `$$`: every setting as `$N=value`. M503 (marlin_lines): Marlin's lines for
+// the settings Marlin has a code for (M205 J, M92, M203 in mm/s, M201),
+// `$N=value` for the others, in the table's order, each an info line
+// (`echo:  M92 X1000.000 ...`).
+void list(bool marlin_lines) {
+  static const char kCodes[][5] PROGMEM = {"M92", "M203", "M201"};
   Values b;
   read(b);
   char line[24];
   for (uint8_t i = 0; i < Table::kCount; ++i) {
-    format(line, Table::at(i), b.value[i]);
-    hal::uart::write(line);
-    hal::uart::write('\n');
+    const Entry e = Table::at(i);
+    uint32_t v = b.value[i];
+    const bool grouped = marlin_lines && (e.kind == Kind::steps || e.kind == Kind::rate || e.kind == Kind::accel);
+    if (marlin_lines && (!grouped || e.axis == 0)) {
+      reply::info_begin();
+      hal::uart::write_P(PSTR("  "));
+    }
+    if (grouped) {
+      if (e.axis == 0) hal::uart::write_P(kCodes[uint8_t(e.kind) - uint8_t(Kind::steps)]);
+      hal::uart::write(' ');
+      hal::uart::write(uint8_t(board::Axes::name_at(e.axis)));
+      if (e.kind == Kind::rate) v = (v + 30) / 60;  // mm/min to mm/s, rounded
+      write_value(v);
+      if (e.axis != kAxes - 1) continue;
+    } else if (marlin_lines && e.kind == Kind::junction) {
+      hal::uart::write_P(PSTR("M205 J"));
+      write_value(v);
+    } else {
+      format(line, e, v);
+      hal::uart::write(line);
+    }
+    if (marlin_lines)
+      reply::info_end();
+    else
+      hal::uart::write('\n');
   }
 }
 
@@ -198,13 +249,58 @@ void change(const char* text) {
     for (; *text >= '0' && *text <= '9' && digits < 4; ++text, ++digits) n = uint16_t(n * 10 + (*text - '0'));
     Error e = Error::unknown;
     if (digits && *text == '=') e = Table::set(b, n, text + 1, engine());
-    if (e != Error::none) {
-      const uint8_t n = uint8_t(e) - 1;
-      return reply::error(pgm_read_byte(&kRefusalCode[n]), reinterpret_cast<const char*>(pgm_read_word(&kRefusal[n])));
-    }
+    // The style is settable only where both are in the image.
+    if (!board::kProtocolSwitch && n == 200 && e == Error::none) e = Error::read_only;
+    if (e != Error::none) return refuse(e);
   }
-  store(b);
-  apply(b);
+  commit(b);
+}
+
+namespace {
+
+// M92 M201 M203 M205 M500 M502 (marlin()): their block on this frame alone,
+// so no second one is on the stack below it (list() and boot() have theirs).
+[[gnu::noinline]] void marlin_change(uint16_t code, char* words) {
+  Values b;
+  if (code == 502) {
+    defaults(b);
+    return commit(b);
+  }
+  read(b);
+  // M500 stores the settings in force (what the EEPROM holds already,
+  // unless its block was bad: then the defaults); M92, M201, M203, M205
+  // set every word's setting, all or none.
+  for (;;) {
+    while (*words == ' ' || *words == '\t') ++words;
+    if (code == 500 || *words == '\0') break;
+    const char letter = char(*words++ & ~0x20);
+    char* end = words;
+    while (*end != ' ' && *end != '\t' && *end != '\0') ++end;
+    const char after = *end;
+    *end = '\0';  // the word's number alone, as `$N=`'s
+    const int8_t axis = board::Axes::index_of(letter);
+    const uint16_t n = code == 205 ? 11 : uint16_t((code == 92 ? 100 : code == 203 ? 110 : 120) + axis);
+    // M205's other words (jerk, minimum feeds and segment time): taken, not used.
+    const Error e = code == 205 ? (letter == 'J' ? Table::set(b, n, words, engine()) : Error::none)
+                    : axis < 0  ? Error::unknown
+                                : Table::set(b, n, words, engine(), code == 203);
+    *end = after;
+    words = end;
+    if (e != Error::none) return refuse(e);
+  }
+  commit(b);
+}
+
+}  // namespace
+
+void marlin(uint16_t code, char* words) {
+  if (code == 501) {  // the block as at boot: its defaults and its line if it is bad
+    const char* news = boot();
+    if (news) reply::info_P(news);
+    return reply::ok();
+  }
+  if (code != 503) return marlin_change(code, words);
+  list(true);
   reply::ok();
 }
 

@@ -13,7 +13,14 @@
 //   main() prints after the banner (grbl `[MSG:...]`, Marlin `echo:...`);
 //   nullptr otherwise. Nothing is written: the EEPROM keeps what it has
 //   until a setting is stored.
-//   list() prints grbl's `$N=value` lines of the settings in force.
+//   list() prints grbl's `$N=value` lines of the settings in force;
+//   list(true) M503's lines (Marlin's codes where Marlin has one).
+//   marlin(code, words) runs Marlin's settings code M<code> with the rest
+//   of its line (`words`): M92/M201/M203/M205 set the named settings (all
+//   or none), M500 stores the settings in force, M501 reloads the block
+//   (with boot()'s line when it is bad), M502 restores the defaults
+//   ($RST=$), M503 reports; it prints the whole answer. The caller has
+//   waited for the machine at rest, as for change().
 //   change(text) runs `N=value` or `RST=$` (the line after its `$`) and
 //   prints the whole answer (`ok`, or the refusal: nothing changed); the
 //   caller has waited for the machine to be at rest (path::at_rest()):
@@ -33,7 +40,8 @@
 namespace settings {
 
 const char* boot();
-void list();
+void list(bool marlin_lines = false);
 void change(const char* text);
+void marlin(uint16_t code, char* words);
 
 }  // namespace settings

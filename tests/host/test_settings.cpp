@@ -187,7 +187,7 @@ TEST(Settings, EveryRangeEdgeOfEveryEntry) {
       ++edges;
     }
   }
-  EXPECT_EQ(edges, 2 * (Printer::count() - 3));
+  EXPECT_EQ(edges, 2 * (Printer::count() - 2));  // all but the read-only $21 and $23
 }
 
 TEST(Settings, TheEngineLimitsHoldWhateverIsSet) {
@@ -245,12 +245,31 @@ TEST(Settings, ParsingRoundsAndRefusesWhatIsNotANumber) {
   EXPECT_EQ(Direct::set(b, 20, "2", kM32), Error::out_of_range);
   EXPECT_EQ(Direct::set(b, 21, "0", kM32), Error::read_only);
   EXPECT_EQ(Direct::set(b, 23, "1", kM32), Error::read_only);
-  EXPECT_EQ(Direct::set(b, 200, "1", kM32), Error::read_only);
+  EXPECT_EQ(Direct::set(b, 200, "2", kM32), Error::out_of_range);  // the style: 0 grbl, 1 Marlin
+  EXPECT_EQ(Direct::set(b, 200, "1.0", kM32), Error::bad_number);
   EXPECT_EQ(Direct::set(b, 24, "1", kM32), Error::unknown);
   EXPECT_EQ(Direct::set(b, 104, "1", kM32), Error::unknown);
   EXPECT_EQ(std::memcmp(&b, &before, sizeof b), 0);
   EXPECT_EQ(Direct::set(b, 20, "0", kM32), Error::none);
   EXPECT_EQ(b.value[Direct::find(20)], 0u);
+  EXPECT_EQ(Direct::set(b, 200, "1", kM32), Error::none);
+  EXPECT_EQ(b.value[Direct::find(200)], 1u);
+}
+
+// Marlin's M203 gives mm/s for a setting in mm/min (per_second): the
+// number times 60, then the same checks.
+TEST(Settings, SetTimesScalesTheNumberFirst) {
+  auto b = defaults<Direct>();
+  const auto before = b;
+  EXPECT_EQ(Direct::set(b, 110, "40.001", kM32, true), Error::engine_limit);  // 2400.06 mm/min: 40001 steps/s
+  EXPECT_EQ(Direct::set(b, 110, "16666.667", kM32, true), Error::out_of_range);  // 1000000.02 mm/min: the range's
+  EXPECT_EQ(Direct::set(b, 110, "16666.666", kM32, true), Error::engine_limit);  // in range, beyond the engine
+  EXPECT_EQ(Direct::set(b, 110, "35791.395", kM32, true), Error::out_of_range);  // beyond 2^31 - 1 thousandths
+  EXPECT_EQ(Direct::set(b, 110, "-1", kM32, true), Error::out_of_range);
+  EXPECT_EQ(Direct::set(b, 110, "x", kM32, true), Error::bad_number);
+  EXPECT_EQ(std::memcmp(&b, &before, sizeof b), 0);
+  EXPECT_EQ(Direct::set(b, 110, "20.5", kM32, true), Error::none);
+  EXPECT_EQ(b.value[Direct::find(110)], 1230000u);  // 1230 mm/min
 }
 
 TEST(Settings, TheLinesSayNumberAndValue) {

@@ -46,11 +46,12 @@ inline std::string slurp(const std::string& path) {
 inline bool exists(const std::string& path) { return std::ifstream(path).good(); }
 
 // An image's flash (.text + .data) and RAM (.data + .bss) as the
-// toolchain's avr-size prints them; 0 and 0 if it could not be run.
+// toolchain's avr-size prints them for its MCU; 0 and 0 if it could not be
+// run.
 struct ImageSize {
   unsigned long flash = 0, ram = 0;
 };
-inline ImageSize avr_size(const std::string& name, const std::string& mcu = "atmega16") {
+inline ImageSize avr_size(const std::string& name, const std::string& mcu) {
   ImageSize size;
   const std::string cmd = "avr-size -C --mcu=" + mcu + " " + image(name);
   FILE* out = popen(cmd.c_str(), "r");
@@ -63,6 +64,7 @@ inline ImageSize avr_size(const std::string& name, const std::string& mcu = "atm
   pclose(out);
   return size;
 }
+inline ImageSize avr_size_m16(const std::string& name) { return avr_size(name, "atmega16"); }
 
 // A PWM output's edges: the cycles of its rises, and its high times.
 struct PwmTrace {

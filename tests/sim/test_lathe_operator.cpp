@@ -236,7 +236,7 @@ TEST(LatheOperator, MultiStartPassesFromTheKeysLandOnTheirPhase) {
 // The panel image within the ATmega16's flash with 10 % to spare (avr-size
 // of the toolchain that built it).
 TEST(LatheOperator, PanelImageLeavesTenPercentOfTheFlash) {
-  const simtest::ImageSize size = simtest::avr_size("m16-panel");
+  const simtest::ImageSize size = simtest::avr_size("m16-panel", "atmega16");
   const unsigned long flash = size.flash, ram = size.ram;
   ASSERT_GT(flash, 0u);
   std::printf("m16-panel: %lu B of flash (limit 14745 B, 90 %% of 16384), %lu B of RAM (.data + .bss)\n", flash, ram);

@@ -291,7 +291,7 @@ namespace {
 // ratio's 128-bit set-up) with the servo's vectors running under it; that
 // pass followed at 60 rpm and stopped (overspeed) at 300.
 TEST(LatheServo, ImageLeavesTenPercentOfTheFlashAndStackHeadroom) {
-  const simtest::ImageSize size = simtest::avr_size("m16-servo");
+  const simtest::ImageSize size = simtest::avr_size("m16-servo", "atmega16");
   const unsigned long flash = size.flash, ram = size.ram;
   ASSERT_GT(flash, 0u);
   // 13 TPI, three starts: a 5.86 mm lead, lambda = 36 counts per spindle

@@ -247,7 +247,7 @@ TEST(Settings, RefusalsChangeNothing) {
       {"$11=10.001", "error:100"},  {"$20=2", "error:100"},          {"$270=1000.001", "error:100"},
       {"$100=-80", "error:100"},    {"$100=abc", "error:2"},         {"$100=", "error:2"},
       {"$20=1.0", "error:2"},       {"$21=0", "error:3"},            {"$23=1", "error:3"},
-      {"$200=1", "error:3"},        {"$24=1", "error:3"},            {"$133=10", "error:3"},
+      {"$200=2", "error:100"},      {"$24=1", "error:3"},            {"$133=10", "error:3"},
       {"$110=2400.030", "error:12"}, {"$120=800.001", "error:12"},   {"$100=1000.02", "error:12"},
       {"$250=2401", "error:12"},    {"$RST=*", "error:3"},
   };
@@ -265,6 +265,7 @@ TEST(Settings, RefusalsChangeNothing) {
   EXPECT_EQ(r[0].reason, "setting out of range");
   EXPECT_EQ(r[7].reason, "bad number");
   EXPECT_EQ(r[10].reason, "setting is read-only");
+  EXPECT_EQ(r[12].reason, "setting out of range");  // $200: 0 grbl, 1 Marlin (test_protocol_switch.cpp)
   EXPECT_EQ(r[13].reason, "no such setting");
   EXPECT_EQ(r[15].reason, "setting beyond the engine's step rate or acceleration");
   EXPECT_EQ(settings_of(*m), board_defaults(*m));

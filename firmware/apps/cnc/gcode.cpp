@@ -70,10 +70,12 @@ struct AnyModes<AxisSet<A...>> {
 };
 constexpr bool kModes = AnyModes<board::Axes>::value();
 
-// A Marlin host's G4 P is milliseconds (G4 S seconds); a board whose axes
-// have no excitation modes refuses M350 whole.
+// A Marlin host's G4 P is milliseconds (G4 S seconds), chosen with the
+// style where it is chosen at run time (board::kProtocolSwitch); a board
+// whose axes have no excitation modes refuses M350 whole.
+constexpr uint8_t kDwell = board::kProtocolSwitch ? am::kDwellChosen : uint8_t(reply::kMarlin);
 using Interpreter =
-    am::GcodeInterpreter<kAxes, board::kArcs, board::kHeater, reply::kMarlin, kModes, board::kHeater && board::kPrinterCodes,
+    am::GcodeInterpreter<kAxes, board::kArcs, board::kHeater, kDwell, kModes, board::kHeater && board::kPrinterCodes,
                          board::kFirmwareRetract>;
 Interpreter& interpreter() {
   static Interpreter instance(AxisTable<board::Axes>::value);
@@ -284,7 +286,7 @@ bool claims(const char* line) {
 }
 
 void refuse(am::GcodeError e) {
-  reply::error(reply::kMarlin ? 0 : pgm_read_byte(&kGrblCode[uint8_t(e)]),
+  reply::error(reply::marlin() ? 0 : pgm_read_byte(&kGrblCode[uint8_t(e)]),
                reinterpret_cast<const char*>(pgm_read_word(&kErrorText[uint8_t(e)])));
 }
 
@@ -294,13 +296,18 @@ bool accept(const char* line) {
   for (uint8_t i = 0; i < kAxes; ++i) {
     coord_before[i] = before.axis[i].coord;
   }
+  if (board::kProtocolSwitch) Interpreter::set_marlin_dwell(reply::marlin());
   am::GcodeError e = interpreter().run(line, action);
   // M303 where the board leaves the autotune out (board::kAutotune).
   if (!board::kAutotune && e == am::GcodeError::none && action.kind == am::GcodeActionKind::heater &&
       action.heater.code == am::GcodeCode::m303)
     e = am::GcodeError::unsupported_code;
   if (e != am::GcodeError::none) {
-    if (reply::kMarlin && e == am::GcodeError::unsupported_code)
+    // Marlin style: a code the image does not have is Marlin's unknown
+    // command, and so is a heater code on a board without a heater (the
+    // m32-direct in Marlin style: a host's M105 poll must not read as a
+    // firmware error).
+    if (reply::marlin() && (e == am::GcodeError::unsupported_code || (!board::kHeater && e == am::GcodeError::no_heater)))
       reply::unknown_command(line);
     else
       refuse(e);

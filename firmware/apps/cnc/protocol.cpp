@@ -28,7 +28,7 @@ namespace {
 
 using reply::ok;
 using reply::error;
-using reply::kMarlin;
+using reply::marlin;
 namespace code = reply::code;
 
 using Reader = am::LineReader<kLineCapacity>;
@@ -39,10 +39,14 @@ am::Command own_command;
 constexpr am::Command& command = board::kGcode ? pending::line.command : own_command;
 // What was accepted and waits for its turn: `command`, the G-code line's
 // action (gcode.h), or Marlin's M400 (motion to end).
-// A settings change (`$N=value`, `$RST=$`) waits for the machine at rest
-// with its line still in the reader.
+// A settings change (`$N=value`, `$RST=$`, or one of Marlin's settings
+// codes) waits for the machine at rest with its line still in the reader:
+// its text from `setting_text` (after the `$`, or after the M-code), the
+// M-code in `setting_code` (0 for a `$` line).
 enum class Waiting : uint8_t { nothing, command, gcode, setting };
 Waiting waiting;
+char* setting_text;
+uint16_t setting_code;
 // Set when received bytes were lost. The gap lies somewhere after the bytes
 // still in the receive ring, so every line completed from then on is refused
 // until one ends with the ring empty: a line spliced across the gap can never
@@ -58,7 +62,7 @@ constexpr uint32_t kBusyPeriodMs = 2000;  // Marlin's DEFAULT_KEEPALIVE_INTERVAL
 
 void hold(Waiting w) {
   waiting = w;
-  if (kMarlin) busy_at = clock::now() + clock::ms(kBusyPeriodMs);
+  if (marlin()) busy_at = clock::now() + clock::ms(kBusyPeriodMs);
 }
 
 using E = am::GcodeError;
@@ -72,7 +76,7 @@ __attribute__((always_inline)) inline void refuse(E shared, uint8_t grbl_code, c
 void parse_error(am::ParseError e) {
   switch (e) {
     case am::ParseError::unknown_command:
-      if (kMarlin) return reply::unknown_command(reader.text());
+      if (marlin()) return reply::unknown_command(reader.text());
       return error(code::unsupported, PSTR("unknown command"));
     case am::ParseError::bad_word: return refuse(E::bad_character, code::expected_letter, PSTR("expected a word letter"));
     case am::ParseError::bad_number: return refuse(E::bad_number, code::bad_number, PSTR("bad number"));
@@ -209,7 +213,7 @@ int32_t m_code(char*& p) {
 
 // Marlin: the line is not run; the host sends it again from `Resend:`.
 void resend(const char* progmem_reason) {
-  hal::uart::write_P(PSTR("Error:"));
+  reply::error_begin();
   hal::uart::write_P(progmem_reason);
   hal::uart::write_P(PSTR(", Last Line: "));
   hal::uart::write_i32(last_line);
@@ -249,11 +253,18 @@ char* numbered(char* line) {
   return p;
 }
 
+// M115's capabilities: M155 where there is a heater, M500..M503 where the
+// settings are (the printer's M500 stores the heater's gains only). One
+// text per image, the others folded away.
+#define AM_M115(temp, eeprom)                                                                                   \
+  PSTR("FIRMWARE_NAME:avrmotion " AVRMOTION_VERSION " SOURCE_CODE_URL:local PROTOCOL_VERSION:1.0 MACHINE_TYPE:" \
+       AVRMOTION_BOARD_NAME " EXTRUDER_COUNT:1\nCap:AUTOREPORT_TEMP:" temp "\nCap:EEPROM:" eeprom              \
+       "\nCap:EMERGENCY_PARSER:0\n")
 void firmware_info() {
-  hal::uart::write_P(PSTR("FIRMWARE_NAME:avrmotion " AVRMOTION_VERSION
-                          " SOURCE_CODE_URL:local PROTOCOL_VERSION:1.0 MACHINE_TYPE:" AVRMOTION_BOARD_NAME
-                          " EXTRUDER_COUNT:1\nCap:AUTOREPORT_TEMP:1\nCap:EEPROM:0\nCap:EMERGENCY_PARSER:0\n"));
+  hal::uart::write_P(board::kHeater ? (board::kSettings ? AM_M115("1", "1") : AM_M115("1", "0"))
+                                    : (board::kSettings ? AM_M115("0", "1") : AM_M115("0", "0")));
 }
+#undef AM_M115
 
 void refuse_halted() { error(code::heater, PSTR("Printer halted (M112), reset to restart")); }
 
@@ -300,6 +311,18 @@ bool marlin_code(char* p) {
   }
 }
 
+// The settings' Marlin codes (docs/settings.md), in either style, on a board
+// with settings: M92, M201, M203, M205 set, M500 stores, M501 reloads,
+// M502 restores the defaults, M503 reports; like `$N=`, once at rest.
+bool settings_code(char* p) {
+  const int32_t m = m_code(p);
+  if (m != 92 && m != 201 && m != 203 && m != 205 && (m < 500 || m > 503)) return false;
+  setting_text = p;
+  setting_code = uint16_t(m);
+  hold(Waiting::setting);
+  return true;
+}
+
 const char kNotHere[] PROGMEM = "not in this image";
 
 // grbl's '$' lines: `$` help, `$I` build info, `$G` the parser state, `$X`
@@ -317,6 +340,8 @@ bool grbl_system(char* p) {
   if (c != '$') return false;
   const char what = char(p[1] & ~0x20);
   if (board::kSettings && (what == 'R' || (p[1] >= '0' && p[1] <= '9'))) {
+    setting_text = p + 1;
+    setting_code = 0;
     hold(Waiting::setting);  // settings::change() once at rest
     return true;
   }
@@ -348,24 +373,32 @@ bool grbl_system(char* p) {
 }
 
 void on_line(Reader::Line kind) {
+  // After M112 (the image with both styles: here rather than poll()'s own loop).
+  if (board::kProtocolSwitch && halted) return refuse_halted();
   if (tainted) {
     tainted = hal::uart::available();
     // Marlin: the host sends the line again.
-    if (kMarlin) return resend(PSTR("serial overrun, line dropped"));
-    return error(code::overrun, PSTR("serial overrun, line dropped"));
+    const char* const reason = PSTR("serial overrun, line dropped");  // one copy for both styles
+    if (marlin()) return resend(reason);
+    return error(code::overrun, reason);
   }
   if (kind == Reader::Line::too_long) return error(code::line_overflow, PSTR("line too long (max 96 characters)"));
   if (kind == Reader::Line::bad_byte) {
-    if (kMarlin) return resend(PSTR("control or non-ASCII byte in line"));
-    return error(code::bad_byte, PSTR("control or non-ASCII byte in line"));
+    const char* const reason = PSTR("control or non-ASCII byte in line");
+    if (marlin()) return resend(reason);
+    return error(code::bad_byte, reason);
   }
   char* line = reader.text();
-  if (kMarlin) {
+  if (marlin()) {
     line = numbered(line);
     if (!line || marlin_code(line)) return;
-  } else if (grbl_system(line)) {
+  } else if (!board::kProtocolSwitch && grbl_system(line)) {
     return;
   }
+  // With both styles in the image, grbl's `$` lines in either (the way back
+  // from Marlin's: `$200=0`).
+  if (board::kProtocolSwitch && grbl_system(line)) return;
+  if (board::kSettings && settings_code(line)) return;
   if (board::kGcode && gcode::claims(line)) {
     if (gcode::accept(line)) hold(Waiting::gcode);
     return;
@@ -386,7 +419,10 @@ bool done_waiting() {
     default:
       if (board::kSettings && waiting == Waiting::setting) {
         if (!path::at_rest()) return false;
-        settings::change(skip_blanks(reader.text()) + 1);
+        if (setting_code)
+          settings::marlin(setting_code, setting_text);
+        else
+          settings::change(setting_text);
         return true;
       }
       return !board::kGcode || gcode::execute();  // M400 too: the interpreter's wait
@@ -396,7 +432,7 @@ bool done_waiting() {
 }  // namespace
 
 void banner() {
-  hal::uart::write_P(kMarlin ? PSTR("start\necho:") : PSTR("Grbl 1.1h ['$' for help]\n[MSG:"));
+  hal::uart::write_P(marlin() ? PSTR("start\necho:") : PSTR("Grbl 1.1h ['$' for help]\n[MSG:"));
   hal::uart::write_P(PSTR("avrmotion " AVRMOTION_VERSION " board=" AVRMOTION_BOARD_NAME " mcu=" AVRMOTION_MCU_NAME
                           " f_cpu="));
   hal::uart::write_u32(F_CPU);
@@ -404,7 +440,7 @@ void banner() {
 }
 
 void poll() {
-  if (kMarlin && halted) {
+  if (!board::kProtocolSwitch && marlin() && halted) {
     while (hal::uart::available()) {
       const Reader::Line line = reader.feed(char(hal::uart::read()));
       if (line != Reader::Line::none) refuse_halted();
@@ -416,7 +452,7 @@ void poll() {
     if (!done_waiting()) {
       // Marlin's host keep-alive: a host that hears nothing for long
       // takes the line as lost.
-      if (kMarlin && clock::due(busy_at, clock::ms(kBusyPeriodMs))) hal::uart::write_P(PSTR("busy: processing\n"));
+      if (marlin() && clock::due(busy_at, clock::ms(kBusyPeriodMs))) hal::uart::write_P(PSTR("busy: processing\n"));
       return;
     }
     waiting = Waiting::nothing;

@@ -1,6 +1,7 @@
 // The line protocol on the UART (docs/protocol.md), in the board's style
-// (board::kProtocol): grbl 1.1 (`ok`, `error:N`) or Marlin (`ok`, numbered
-// and checksummed lines, `Resend:`). One answer per line.
+// (board::kProtocol; with board::kProtocolSwitch the style in force, the
+// setting $200: reply::marlin()): grbl 1.1 (`ok`, `error:N`) or Marlin
+// (`ok`, numbered and checksummed lines, `Resend:`). One answer per line.
 //
 // Contract
 //   banner() once after reset; poll() from the main loop. poll() reads

@@ -4,6 +4,8 @@
 
 namespace reply {
 
+bool marlin_now = kMarlin;
+
 uint8_t refusal_code(planner::Refusal r) {
   return r == planner::Refusal::timer_axis_not_alone ? code::timer_axis_alone
          : r == planner::Refusal::alarm              ? code::alarm_lock
@@ -13,10 +15,10 @@ uint8_t refusal_code(planner::Refusal r) {
 
 void ok() { hal::uart::write_P(PSTR("ok\n")); }
 
-void info_begin() { hal::uart::write_P(kMarlin ? PSTR("echo:") : PSTR("[MSG:")); }
+void info_begin() { hal::uart::write_P(marlin() ? PSTR("echo:") : PSTR("[MSG:")); }
 
 void info_end() {
-  if (!kMarlin) hal::uart::write(']');
+  if (!marlin()) hal::uart::write(']');
   hal::uart::write('\n');
 }
 
@@ -26,10 +28,15 @@ void info_P(const char* progmem_text) {
   info_end();
 }
 
-void error_begin() { hal::uart::write_P(kMarlin ? PSTR("Error:") : PSTR("[MSG:")); }
+void error_begin() {
+  // grbl: the reason as an info line, `[MSG:` (one copy of the text where
+  // both styles are in the image; the others keep their own layout).
+  if (board::kProtocolSwitch && !marlin()) return info_begin();
+  hal::uart::write_P(marlin() ? PSTR("Error:") : PSTR("[MSG:"));
+}
 
 void error_end(uint8_t grbl_code) {
-  if (kMarlin) {
+  if (marlin()) {
     hal::uart::write('\n');
     ok();
     return;
@@ -53,8 +60,8 @@ void unknown_command(const char* line) {
 }
 
 void alarm(uint8_t grbl_alarm, const char* progmem_reason) {
-  if (kMarlin) {
-    hal::uart::write_P(PSTR("Error:"));
+  if (marlin()) {
+    error_begin();
     hal::uart::write_P(progmem_reason);
     hal::uart::write_P(PSTR(", M999 unlocks\n"));
     return;

@@ -1,5 +1,6 @@
 // The answers every line of the cnc protocol ends with, in the board's style
-// (board::kProtocol, docs/protocol.md):
+// (board::kProtocol, docs/protocol.md; on a board with kProtocolSwitch the
+// style in force, the setting $200: marlin()):
 //   grbl    `ok`, or `[MSG:<reason>]` and `error:<n>` (grbl 1.1's number
 //           where the refusal has a grbl meaning, ours from 100 up);
 //   Marlin  `ok`, or `Error:<reason>` and `ok` (Marlin acknowledges every
@@ -16,6 +17,14 @@
 namespace reply {
 
 constexpr bool kMarlin = board::kProtocol == Protocol::marlin;
+// The style in force: the constant, or where the board switches styles at
+// run time (board::kProtocolSwitch) the flag the settings set at boot and
+// at `$200=` (firmware/services/settings.cpp). Only that board links it.
+extern bool marlin_now;
+inline bool marlin() { return board::kProtocolSwitch ? marlin_now : kMarlin; }
+inline void set_marlin(bool on) {
+  if (board::kProtocolSwitch) marlin_now = on;
+}
 
 // grbl 1.1's error numbers (its interface document) for the refusals that
 // have a grbl meaning, and avrmotion's own from 100 up for those that have
