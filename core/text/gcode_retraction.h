@@ -22,8 +22,9 @@
 //   0 .. 100 mm, feeds above 0 and at most 100000 mm/min (out_of_range
 //   otherwise), in the line's units (G20: inches); a word not given keeps
 //   its value; nothing moves. M207 while retracted changes the next G11's
-//   length (the offset taken by the G10 stays; the filament ends where the
-//   new length says).
+//   length: the G10's pull stays in the offset and the G11 pushes the
+//   length in force (Marlin's rule too), so the E offset ends at that
+//   length minus the G10's, plus the extra.
 #pragma once
 #include "gcode_interpreter.h"
 

@@ -75,6 +75,14 @@ TEST(GcodeRetraction, G10G11MoveEAndZAndKeepTheProgramPosition) {
   EXPECT_EQ(a.target[2], 600);
   EXPECT_EQ(a.target[3], 6500);
   EXPECT_EQ(a.feed, 6000000);
+  // M207 while retracted: the G11 pushes the length in force, not the G10's.
+  ASSERT_EQ(run(g, "G10", a), GcodeError::none);
+  EXPECT_EQ(a.target[3], 6500 - 2000);
+  ASSERT_EQ(run(g, "M207 S1.25", a), GcodeError::none);
+  ASSERT_EQ(run(g, "G11", a), GcodeError::none);
+  EXPECT_EQ(a.target[3], 6500 - 2000 + 1250 + 500);
+  EXPECT_EQ(g.state().axis[3].offset, 500 - 2000 + 1250 + 500);
+  EXPECT_EQ(g.state().axis[3].coord, 60000);
 }
 
 // The rule against a model, over random settings, hops, extras and moves
