@@ -1,9 +1,27 @@
 // The heater M-codes of the G-code interpreter (gcode_interpreter.h, "Heater
-// codes" in its contract): GcodeInterpreter::heater() turns an M104, M105,
+// codes and printer codes" in its contract): GcodeInterpreter::heater() turns an M104, M105,
 // M106, M107 (the part fan), M108, M109, M155, M301, M303 or M500 line into a
 // GcodeHeaterCommand, with
 // its words checked and nothing in the interpreter's state changed. Included
 // at the end of gcode_interpreter.h, which declares what it defines.
+//
+// Contract
+//   Their words are parameters, never axes (M303's C is the cycle count),
+//   and the line holds no other code (heater_code_alone).
+//     M104 S<C>          set the target (S0: off)
+//     M109 S<C> | R<C>   set it and wait (S: only while heating; R: either way)
+//     M105, M108         report; end a wait (the machine's business)
+//     M155 S<s>          auto-report every S whole seconds, 0 .. 60 (0: off)
+//     M106 [S<duty>], M107  the part fan: duty 0 .. 255 (M106 alone: 255),
+//                        M107: 0 (a board without a heater, not a printer,
+//                        has neither: unsupported_code)
+//     M301 [P][I][D]     set the given PID gains (Marlin's units), report
+//     M303 [S<C>][C<n>]  relay autotune at S (default 150 C), C cycles 3 .. 20
+//                        (default 5)
+//   Temperatures are 0 .. 260 C (kGcodeMaxTarget; M303 above 0), kept in
+//   0.01 C; gains P, I 0 .. 1000, D 0 .. 10000, kept in thousandths. A word
+//   the code does not take is unused_word; a missing S is
+//   missing_temperature. The state does not change.
 #pragma once
 #include "gcode_interpreter.h"
 

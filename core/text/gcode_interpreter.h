@@ -90,34 +90,11 @@
 //   the first F is bad_feed), all positions and offsets 0. M2/M30 restore
 //   G0, G17, G90, M82 and keep units, F, positions and offsets.
 //
-//   Heater codes. Their words are parameters, never axes (M303's C is the
-//   cycle count), and the line holds no other code (heater_code_alone).
-//     M104 S<C>          set the target (S0: off)
-//     M109 S<C> | R<C>   set it and wait (S: only while heating; R: either way)
-//     M105, M108         report; end a wait (the machine's business)
-//     M155 S<s>          auto-report every S whole seconds, 0 .. 60 (0: off)
-//     M106 [S<duty>], M107  the part fan: duty 0 .. 255 (M106 alone: 255),
-//                        M107: 0 (a board without a heater, not a printer,
-//                        has neither: unsupported_code)
-//     M301 [P][I][D]     set the given PID gains (Marlin's units), report
-//     M303 [S<C>][C<n>]  relay autotune at S (default 150 C), C cycles 3 .. 20
-//                        (default 5)
-//   Temperatures are 0 .. 260 C (kGcodeMaxTarget; M303 above 0), kept in
-//   0.01 C; gains P, I 0 .. 1000, D 0 .. 10000, kept in thousandths. A word
-//   the code does not take is unused_word; a missing S is
-//   missing_temperature. The state does not change.
+//   Heater codes (M104 M105 M106 M107 M108 M109 M155 M301 M303 M500:
+//   action heater) and printer codes (M73 M201 M203 M204 M205 M220 M221:
+//   action printer): their words and ranges are in gcode_heater_codes.h and
+//   gcode_printer_codes.h; each is alone on its line and changes no state.
 //
-//   Printer codes (action printer, GcodePrinterCommand: each word of the
-//   code's slots, in the line's units). Alone on the line, as the heater's.
-//     M201 <axes>        accelerations, mm/s^2, above 0 (bad_limit)
-//     M203 <axes>        top feeds, mm/s, above 0
-//     M204 [P][T][R][S]  path accelerations, mm/s^2, above 0: print,
-//                        travel, retract; S print and travel
-//     M205 [J]           junction deviation, 0.001 .. 10 mm; X Y Z E S T B
-//                        (jerk and minimum feeds) taken, not used
-//     M73 [P][R]         progress, whole 0 .. 100 %, R whole minutes left;
-//                        Q, S taken, not used (bad_percent)
-//     M220 [S], M221 [S] feed override, flow: whole 10 .. 500 %
 //   Flow (set_flow(), M221's, the machine's business to call): every later
 //   move's E steps are its distance's times flow / 100, rounded half away
 //   from zero, and the difference goes into E's G92 offset, so the program

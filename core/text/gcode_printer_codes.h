@@ -1,10 +1,23 @@
 // The printer M-codes of the G-code interpreter (gcode_interpreter.h,
-// "Printer codes" in its contract): GcodeInterpreter::printer() turns an
+// "Heater codes and printer codes" in its contract): GcodeInterpreter::printer() turns an
 // M73, M201, M203, M204, M205, M220 or M221 line into a
 // GcodePrinterCommand, with its words checked and nothing in the
 // interpreter's state changed. Reached through heater() (the same board
 // flag, the same rule that the code is alone on its line). Included at the
 // end of gcode_interpreter.h, which declares what it defines.
+//
+// Contract
+//   Action printer, GcodePrinterCommand: each word in the code's slots, in
+//   the line's units. Alone on the line, as the heater's.
+//     M201 <axes>        accelerations, mm/s^2, above 0 (bad_limit)
+//     M203 <axes>        top feeds, mm/s, above 0
+//     M204 [P][T][R][S]  path accelerations, mm/s^2, above 0: print,
+//                        travel, retract; S print and travel
+//     M205 [J]           junction deviation, 0.001 .. 10 mm; X Y Z E S T B
+//                        (jerk and minimum feeds) taken, not used
+//     M73 [P][R]         progress, whole 0 .. 100 %, R whole minutes left;
+//                        Q, S taken, not used (bad_percent)
+//     M220 [S], M221 [S] feed override, flow: whole 10 .. 500 %
 #pragma once
 #include "gcode_interpreter.h"
 
