@@ -64,6 +64,12 @@ constexpr HomingSettings<1> kHomingSettings = {};
 // homing and limits, `$$` and `$N=value` (grbl) or M500..M503 (Marlin).
 // Only for boards whose axes are all step/dir (one position unit a step).
 constexpr bool kSettings = false;
+// With settings: the pin polarities among them, grbl's $3 (direction
+// invert mask: each segment's direction lines flipped for its axes) and,
+// with endstops, $5 (the switches read inverted: normally-closed ones). The
+// step interrupt reads both from RAM (3 cycles a step event that watches a
+// switch, 4 a segment).
+constexpr bool kPinPolarities = false;
 // The lathe program's operator panel (firmware/apps/lathe/operator.h) in
 // place of its UART front end; with kApproximateRatios, a thread whose ratio
 // the follower cannot hold exactly is cut at the nearest one it can (the
@@ -88,6 +94,7 @@ using namespace board_defaults;
 // The style is chosen by a setting, so a board that switches styles keeps
 // the settings.
 static_assert(!board::kProtocolSwitch || board::kSettings, "kProtocolSwitch needs kSettings ($200)");
+static_assert(!board::kPinPolarities || board::kSettings, "kPinPolarities needs kSettings ($3, $5)");
 
 // Every board lists its hardware claims; completing the type runs their
 // compile-time checks (hal/avr/claims.h).

@@ -142,14 +142,14 @@ const std::vector<Table>& engine_tables();
 std::string move_line(const Scenario& s);
 
 // The images of the size table, in its order.
-extern const char* const kSizeImages[12];
+extern const char* const kSizeImages[13];
 
 // Each part's flash and RAM, bytes.
 struct PartSize {
   const char* mcu;
   unsigned flash, ram;
 };
-extern const PartSize kParts[3];
+extern const PartSize kParts[4];
 const PartSize* part_of(const char* mcu);
 
 void print_sizes(const std::vector<SizeRow>& rows);

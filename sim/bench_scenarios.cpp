@@ -40,12 +40,14 @@ const std::vector<Table>& engine_tables() {
   return tables;
 }
 
-const char* const kSizeImages[12] = {"uno",        "uno-grbl",   "m32",  "m32-i3",   "m32-grbl",  "m32-cnc",
-                                     "m32-direct", "m32-driver", "m16",  "m16-8mhz", "m16-lathe", "m16-servo"};
+const char* const kSizeImages[13] = {"uno",       "uno-grbl",  "m32",       "m32-i3",   "m32-grbl",
+                                     "m32-cnc",   "m32-direct", "m32-driver", "m1284",   "m16",
+                                     "m16-8mhz",  "m16-lathe", "m16-servo"};
 
 // Flash an image may fill: the Uno's bootloader keeps 512 of the 328P's
 // 32768 bytes (firmware/CMakeLists.txt fails the link beyond).
-const PartSize kParts[3] = {{"atmega328p", 32256, 2048}, {"atmega32", 32768, 2048}, {"atmega16", 16384, 1024}};
+const PartSize kParts[4] = {
+    {"atmega328p", 32256, 2048}, {"atmega32", 32768, 2048}, {"atmega1284p", 131072, 16384}, {"atmega16", 16384, 1024}};
 
 const PartSize* part_of(const char* mcu) {
   for (const PartSize& p : kParts) {

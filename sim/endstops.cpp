@@ -21,7 +21,7 @@ Endstops::Endstops(Machine& m, const EndstopParams& p) : m_(m), p_(p) {
     s.port = am::pin_port(d.endstop);
     s.bit = am::pin_bit(d.endstop);
     s.at_max = d.option & am::kEndstopAtMax;
-    s.closed_high = d.option & am::kEndstopClosedHigh;
+    s.closed_high = bool(d.option & am::kEndstopClosedHigh) != p.normally_closed;
     s.axis = m.axis(d.name);
     s.level = !s.closed_high;  // open: the machine holds it so from construction
     switches_.push_back(s);

@@ -16,7 +16,10 @@
 //              0 us: a clean edge.
 //   level      closed is the descriptor's polarity (kEndstopClosedHigh:
 //              high, else low: a switch to ground against the pull-up);
-//              the pin is held through Machine::hold_input().
+//              `normally_closed` switches read the other way (a contact
+//              that opens when the axis reaches it: the pin low while the
+//              axis is away, high at the switch; grbl's $5 for them). The
+//              pin is held through Machine::hold_input().
 // Log: every level the pin takes, with its cycle (edges()), and the cycle
 // of each contact change (contact_changes()), per axis.
 #pragma once
@@ -32,6 +35,7 @@ namespace sim {
 struct EndstopParams {
   double bounce_us = 0;
   unsigned bounce_toggles = 6;  // even: the burst ends on the new level
+  bool normally_closed = false;
 };
 
 class Endstops {

@@ -67,6 +67,7 @@ void usage() {
                "  a board with endstops (m32) has its switches at each axis's position 0 (docs/homing.md):\n"
                "  --endstop A=STEPS   axis A's switch at STEPS instead; more than once allowed\n"
                "  --endstop-bounce US each contact change bounces for US microseconds (default 0)\n"
+               "  --endstop-nc        normally-closed switches: each pin reads the other way\n"
                "  --no-endstops       no switches: every endstop stays open\n"
                "  a board with a spindle encoder (m16-lathe, m16-servo) runs a simulated spindle (docs/lathe.md);\n"
                "  the m16-servo's leadscrew is the seed's DC servo (sim/dc_servo.h):\n"
@@ -159,7 +160,8 @@ int main(int argc, char** argv) {
         usage();
         return 2;
       }
-    } else if (a == "--no-endstops") no_endstops = true;
+    } else if (a == "--endstop-nc") endstop_params.normally_closed = true;
+    else if (a == "--no-endstops") no_endstops = true;
     else if (a == "--lcd") lcd_file = value();
     else if (a == "--eeprom") eeprom_file = value();
     else if (a == "--keys") {
@@ -265,8 +267,8 @@ int main(int argc, char** argv) {
     if (has_endstops && !no_endstops) {
       switches.reset(new sim::Endstops(machine, endstop_params));
       for (const auto& e : endstop_at) switches->set_position(e.first, e.second);
-    } else if (!endstop_at.empty() || endstop_params.bounce_us > 0) {
-      throw std::runtime_error("--endstop/--endstop-bounce: this board has no endstops (or --no-endstops)");
+    } else if (!endstop_at.empty() || endstop_params.bounce_us > 0 || endstop_params.normally_closed) {
+      throw std::runtime_error("--endstop/--endstop-bounce/--endstop-nc: this board has no endstops (or --no-endstops)");
     }
     // A printer (a hot end and a step/dir extruder): the print's measurements.
     std::unique_ptr<sim::PrintWatch> print_watch;

@@ -185,6 +185,10 @@ void SerialHost::on_line(const std::string& line) {
   responses_.back().answer = answer;
   responses_.back().reason = reason;
   responses_.back().answer_cycle = avr_->cycle;
+  // An image with both styles answers in the one `$200` chose from the
+  // next line on (docs/protocol.md): the host follows it.
+  const std::string& sent = responses_.back().line;
+  if (is_ok(answer) && (sent == "$200=0" || sent == "$200=1")) marlin_ = sent.back() == '1';
   send_next();
 }
 

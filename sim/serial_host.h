@@ -88,9 +88,11 @@ class SerialHost {
   // (pos, info lines, a refusal's reason line).
   std::vector<std::string> messages() const;
   bool marlin() const { return marlin_; }
-  // The firmware has changed its style since its banner (the m32-direct's
-  // setting `$200`, docs/protocol.md): its answers from now on are read in
-  // the other style.
+  // The firmware has changed its style since its banner (the setting
+  // `$200` of an image with both, docs/protocol.md): its answers from now on
+  // are read in the other style. A script line `$200=0` or `$200=1` that is
+  // answered `ok` does this by itself; set_marlin() is for the other ways
+  // (a power cycle, a block put into the EEPROM).
   void set_marlin(bool marlin) { marlin_ = marlin; }
   size_t banner_lines_ = 2;  // 1 for the lathe's one-line banner
 

@@ -31,6 +31,12 @@ const char* const kVectors16[] = {
     "RESET",        "INT0",       "INT1",       "TIMER2_COMP", "TIMER2_OVF", "TIMER1_CAPT", "TIMER1_COMPA",
     "TIMER1_COMPB", "TIMER1_OVF", "TIMER0_OVF", "SPI_STC",     "USART_RXC",  "USART_UDRE",  "USART_TXC",
     "ADC",          "EE_RDY",     "ANA_COMP",   "TWI",         "INT2",       "TIMER0_COMP", "SPM_RDY"};
+const char* const kVectors1284p[] = {
+    "RESET",        "INT0",         "INT1",         "INT2",         "PCINT0",      "PCINT1",       "PCINT2",
+    "PCINT3",       "WDT",          "TIMER2_COMPA", "TIMER2_COMPB", "TIMER2_OVF",  "TIMER1_CAPT",  "TIMER1_COMPA",
+    "TIMER1_COMPB", "TIMER1_OVF",   "TIMER0_COMPA", "TIMER0_COMPB", "TIMER0_OVF",  "SPI_STC",      "USART0_RX",
+    "USART0_UDRE",  "USART0_TX",    "ANALOG_COMP",  "ADC",          "EE_READY",    "TWI",          "SPM_READY",
+    "USART1_RX",    "USART1_UDRE",  "USART1_TX",    "TIMER3_CAPT",  "TIMER3_COMPA", "TIMER3_COMPB", "TIMER3_OVF"};
 
 // Identifiers: printable ASCII without '$' (which starts VCD keywords).
 std::string vcd_id(size_t index) {
@@ -96,6 +102,7 @@ const char* vector_name(const std::string& mcu, int vector) {
   }
   if (mcu == "atmega32") return pick(kVectors32, int(sizeof kVectors32 / sizeof *kVectors32));
   if (mcu == "atmega16") return pick(kVectors16, int(sizeof kVectors16 / sizeof *kVectors16));
+  if (mcu == "atmega1284p") return pick(kVectors1284p, int(sizeof kVectors1284p / sizeof *kVectors1284p));
   return "";
 }
 

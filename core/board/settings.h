@@ -7,9 +7,12 @@
 // tests/host/test_settings.cpp.
 //
 // Contract
-//   Layout<Axes, SwitchMask, Heater> lists the settings of a board with
-//   `Axes` axes, endstops on the axes of `SwitchMask` (bit i: axis i) and a
-//   heater or not, in grbl's numeric order (Kind's order):
+//   Layout<Axes, SwitchMask, Heater, Polarities> lists the settings of a
+//   board with `Axes` axes, endstops on the axes of `SwitchMask` (bit i:
+//   axis i), a heater or not and the pin polarities or not (false by
+//   default), in grbl's numeric order (Kind's order):
+//     $3         direction invert mask, 0 .. 2^Axes - 1 (with Polarities)
+//     $5         limit pins invert, 0/1          (with Polarities and endstops)
 //     $11        junction deviation, mm            0.001 .. 10
 //     $20        soft limits, 0/1                  (with endstops)
 //     $21        hard limits, 1, read-only         (with endstops)
@@ -70,7 +73,7 @@ namespace am {
 namespace settings {
 
 enum class Kind : uint8_t {
-  junction, soft_limits, hard_limits, homing, homing_dir, steps, rate, accel, travel, protocol, locate, seek,
+  dir_invert, limit_invert, junction, soft_limits, hard_limits, homing, homing_dir, steps, rate, accel, travel, protocol, locate, seek,
   pull_off, gain_p, gain_i, gain_d, end
 };
 
@@ -99,11 +102,12 @@ struct KindRows {
   static constexpr uint8_t kReadOnly = 0x80, kWhole = 0x40, kNoMax = 0x0F;
   static const uint8_t row[uint8_t(Kind::end)][3];
 };
-// (270 = 14 + 256, 300..302 = 44..46 + 256.) A template's member: one copy
-// in the image, defined in the header.
+// (270 = 14 + 256, 300..302 = 44..46 + 256; $3's greatest, 100, is above
+// every mask: validate() holds it within the axes.) A template's member:
+// one copy in the image, defined in the header.
 template <bool B>
 const uint8_t KindRows<B>::row[uint8_t(Kind::end)][3] AM_SETTINGS_FLASH = {
-    {11, 0, 0x14},  {20, 0, 0x40},  {21, 0, 0xCF},  {22, 0, 0x40},  {23, 0, 0xCF}, {100, 0, 0x27},
+    {3, 0, 0x42},   {5, 0, 0x40},   {11, 0, 0x14},  {20, 0, 0x40},  {21, 0, 0xCF},  {22, 0, 0x40},  {23, 0, 0xCF}, {100, 0, 0x27},
     {110, 0, 0x29}, {120, 0, 0x29}, {130, 0, 0x28}, {200, 0, 0x40}, {240, 0, 0x29}, {250, 0, 0x29},
     {14, 1, 0x06},  {44, 1, 0x06},  {45, 1, 0x06},  {46, 1, 0x07}};
 using KindTable = KindRows<>;
@@ -215,12 +219,14 @@ enum class Error : uint8_t { none, unknown, read_only, bad_number, out_of_range,
 
 constexpr uint8_t bit_count(uint8_t m) { return m ? uint8_t((m & 1) + bit_count(uint8_t(m >> 1))) : 0; }
 
-template <uint8_t Axes, uint8_t SwitchMask, bool Heater>
+template <uint8_t Axes, uint8_t SwitchMask, bool Heater, bool Polarities = false>
 struct Layout {
   static constexpr uint8_t kSwitches = bit_count(SwitchMask);
 
   static constexpr uint8_t multiplicity(Kind k) {
-    return k == Kind::junction || k == Kind::protocol                                  ? 1
+    return k == Kind::dir_invert                                                       ? (Polarities ? 1 : 0)
+           : k == Kind::limit_invert                                                   ? (Polarities && kSwitches ? 1 : 0)
+           : k == Kind::junction || k == Kind::protocol                                ? 1
            : k <= Kind::homing_dir                                                     ? (kSwitches ? 1 : 0)
            : k == Kind::steps || k == Kind::rate || k == Kind::accel                   ? Axes
            : k == Kind::travel || k == Kind::locate || k == Kind::seek || k == Kind::pull_off ? kSwitches
@@ -291,7 +297,7 @@ struct Layout {
       const Entry e = at(i);
       const Kind k = e.kind;
       const uint32_t v = b.value[i];
-      if (!in_range(k, v)) return Error::out_of_range;
+      if (!in_range(k, v) || (Polarities && k == Kind::dir_invert && v >> Axes)) return Error::out_of_range;
       if (k < Kind::rate || k == Kind::protocol || k >= Kind::gain_p) continue;
       constexpr uint8_t steps = first(Kind::steps);
       const uint32_t spm = b.value[steps + e.axis];
@@ -346,9 +352,9 @@ struct Layout {
   }
 };
 
-template <uint8_t Axes, uint8_t SwitchMask, bool Heater>
+template <uint8_t Axes, uint8_t SwitchMask, bool Heater, bool Polarities>
 template <uint8_t... I>
-const uint8_t Layout<Axes, SwitchMask, Heater>::Rows<I...>::row[sizeof...(I) ? sizeof...(I) : 1][2] AM_SETTINGS_FLASH = {
+const uint8_t Layout<Axes, SwitchMask, Heater, Polarities>::Rows<I...>::row[sizeof...(I) ? sizeof...(I) : 1][2] AM_SETTINGS_FLASH = {
     {uint8_t(entry(I).kind), entry(I).axis}...};
 
 // `$<number>=<value>` into buf (at least 20 bytes): the value in its

@@ -15,9 +15,15 @@
 //                        `axes` in `dirs` (forward bits) runs toward
 //     watch_latches(axes, dirs)  the same switches' edge latches (those on
 //                        INT0/INT1: their INTFn flags, cleared now)
-//     closed(pins, latches)  whether a switch of those is closed now, or has
-//                        closed since (a latched edge: bounce cannot hide it)
-//     closed_at(k)       whether the k-th switch is closed now
+//     closed(pins, latches, inverted)  whether a switch of those is closed
+//                        now, or has closed since (a latched edge: bounce
+//                        cannot hide it); `inverted` (a pin mask, 0 by
+//                        default) the switches whose pins read the other
+//                        way: normally closed (a board's $5)
+//     closed_at(k, inverted)  whether the k-th switch is closed now
+//     init(inverted)     the latches set for the closing edges, the other
+//                        edge where the switches are inverted
+//     pins               the pin mask of every switch
 //     axis_at(k)         its axis index; pin_of(axis) its pin (descriptor)
 //   HomingAxis is what the homing service and the soft limits need of a
 //   switch's axis, HomingSettings<N> those of a board's N switches in the
@@ -148,8 +154,10 @@ struct EndstopSet {
   static constexpr uint32_t claims = endstops_detail::or_claims(E::claims...);
   static constexpr bool closed_high = ClosedHigh;
 
+  static constexpr uint8_t pins = endstops_detail::or_all(E::Pin::mask...);
+
   // The closing edges of the switches on INT0/INT1 latch (no interrupt).
-  static void init() { Each::init(ClosedHigh); }
+  static void init(bool inverted = false) { Each::init(ClosedHigh != inverted); }
   static uint8_t toward(uint8_t moving, uint8_t dirs) { return uint8_t(moving & axes & ~(dirs ^ max_end)); }
   static uint8_t watch(uint8_t moving, uint8_t dirs) { return count ? Each::watch(toward(moving, dirs)) : 0; }
   // Of the latching ones among them: the flags, cleared (an edge of a move
@@ -159,13 +167,13 @@ struct EndstopSet {
     if (flags) hal::ext_int::clear_latched(flags);
     return flags;
   }
-  static bool closed(uint8_t pins, uint8_t latches) {
+  static bool closed(uint8_t watched, uint8_t latches, uint8_t inverted = 0) {
     if (!count) return false;
-    uint8_t level = Each::read_port();
+    uint8_t level = uint8_t(Each::read_port() ^ inverted);
     if (!ClosedHigh) level = uint8_t(~level);
-    return (level & pins) != 0 || (hal::ext_int::latched() & latches) != 0;
+    return (level & watched) != 0 || (hal::ext_int::latched() & latches) != 0;
   }
-  static bool closed_at(uint8_t k) { return Each::read_at(k) == ClosedHigh; }
+  static bool closed_at(uint8_t k, bool inverted = false) { return Each::read_at(k) == (ClosedHigh != inverted); }
   static constexpr uint8_t axis_at(uint8_t k) { return Each::axis_at(k); }
   static constexpr uint8_t pin_of(uint8_t axis) { return Each::pin_of(uint8_t(1u << axis)); }
 };

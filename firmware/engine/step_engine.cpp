@@ -74,6 +74,10 @@ Dda* const block_slot[kBlockRing] = {&blocks[0], &blocks[1], &blocks[2], &blocks
 uint8_t block_serial;
 volatile uint8_t running_block;
 
+// The direction lines driven inverted, the switch pins read inverted
+// (set_polarities()).
+uint8_t dir_invert, switch_invert;
+
 // The last segment pushed (main loop only), for the chain mark.
 uint8_t pushed_axes;
 uint8_t pushed_dirs;
@@ -126,7 +130,7 @@ __attribute__((noinline)) void load_front(const am::StepSegment& s) {
   axes = s.axes;
   step_dirs = s.dirs;
   step_fast = fast_eligible(s) ? (s.count == 1 ? 2 : 1) : 0;
-  board::Axes::set_direction(s.axes, s.dirs);
+  board::Axes::set_direction(s.axes, board::kPinPolarities ? uint8_t(s.dirs ^ dir_invert) : s.dirs);
   if (board::Endstops::count) {
     endstop_watch = board::Endstops::watch(s.axes, s.dirs);
     endstop_latches = board::Endstops::watch_latches(s.axes, s.dirs);
@@ -184,6 +188,15 @@ Dda* begin_block(uint8_t& serial) {
 bool busy() { return running || !step_queue.empty(); }
 
 bool stopped_at_endstop() { return tripped; }
+
+void set_polarities(uint8_t dir_mask, uint8_t switch_pins) {
+  if (!board::kPinPolarities) return;
+  dir_invert = dir_mask;
+  switch_invert = switch_pins;
+  board::Endstops::init(switch_pins != 0);
+}
+
+uint8_t inverted_switches() { return switch_invert; }
 
 void clear_trip() {
   while (!step_queue.empty()) step_queue.pop();
@@ -272,7 +285,7 @@ inline void step_event() {
   }
   // A switch the segment runs toward has closed: this step is not made, and
   // nothing moves until the main loop has seen it (clear_trip()).
-  if (board::Endstops::closed(endstop_watch, endstop_latches)) {
+  if (board::Endstops::closed(endstop_watch, endstop_latches, board::kPinPolarities ? switch_invert : 0)) {
     stop_engine();
     tripped = true;
     return;

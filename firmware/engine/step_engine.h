@@ -65,6 +65,14 @@ const am::StepSegment& segment(uint8_t index);
 const Dda& block(uint8_t serial);
 
 void init();
+// The pin polarities (board::kPinPolarities; grbl's $3 and $5): the
+// direction lines of the axes in `dir_mask` (bit i: axis i) driven inverted
+// from the next segment on, and the switches on the pins in `switch_pins`
+// (of board::Endstops::pins) read inverted, their latches re-armed for it.
+// Positions, endstops and reports keep the commanded direction.
+// inverted_switches() is that pin mask.
+void set_polarities(uint8_t dir_mask, uint8_t switch_pins);
+uint8_t inverted_switches();
 bool push(am::StepSegment segment);
 void start();
 bool busy();

@@ -14,6 +14,7 @@
 #include "../board.h"
 #include "../engine/clock.h"
 #include "../engine/limits.h"
+#include "settings.h"
 
 namespace heater {
 namespace {
@@ -115,8 +116,8 @@ void sample_period() {
 void init() {
   Hw::Pwm::init();
   Stored stored;
-  hal::eeprom::read(kStoredAt, &stored, sizeof stored);
-  if (stored.tag != kStoredTag || stored.sum != checksum(stored.gains) || !set_gains(stored.gains))
+  if (!board::kSettings) hal::eeprom::read(kStoredAt, &stored, sizeof stored);
+  if (board::kSettings || stored.tag != kStoredTag || stored.sum != checksum(stored.gains) || !set_gains(stored.gains))
     set_gains(am::PidGains{22200, 1080, 114000});  // Marlin's DEFAULT_Kp/Ki/Kd
   hal::adc::init(hal::adc::Prescaler::div128, false);  // 125 kHz: 104 us a conversion
   hal::adc::select(Hw::adc_channel);
@@ -132,6 +133,7 @@ void init() {
 }
 
 void store_gains() {
+  if (board::kSettings) return settings::store_gains();
   const Stored stored{kStoredTag, gains(), checksum(gains())};
   hal::eeprom::update(kStoredAt, &stored, sizeof stored);
 }

@@ -9,6 +9,7 @@
 #include "../engine/limits.h"
 #include "../engine/path.h"
 #include "../engine/planner.h"
+#include "../engine/step_engine.h"
 
 namespace homing {
 namespace {
@@ -82,7 +83,7 @@ Result run(uint8_t axes) {
     return Result::busy;
   }
   const HomingAxis& s = limits::settings.axis[k];
-  const bool closed = Endstops::closed_at(k);
+  const bool closed = Endstops::closed_at(k, board::kPinPolarities && engine::inverted_switches() != 0);
   const bool found = limits::found();
   int32_t steps = -int32_t(s.back_off);  // away, unless a phase says otherwise
   uint16_t rate = s.seek_rate;

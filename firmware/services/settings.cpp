@@ -15,6 +15,8 @@
 #include "../board.h"
 #include "../engine/limits.h"
 #include "../engine/path.h"
+#include "../engine/step_engine.h"
+#include "heater.h"
 
 namespace settings {
 namespace {
@@ -22,7 +24,7 @@ namespace {
 using namespace am::settings;
 constexpr uint8_t kAxes = board::Axes::count;
 using Endstops = board::Endstops;
-using Table = Layout<kAxes, Endstops::axes, board::kHeater>;
+using Table = Layout<kAxes, Endstops::axes, board::kHeater, board::kPinPolarities>;
 using Values = Table::Values;
 
 // The block's version: a new layout or meaning of a value needs a new one
@@ -90,7 +92,9 @@ void defaults(Values& b) {
     const Entry e = Table::at(i);
     const uint32_t spm = board::Axes::steps_per_m_at(e.axis);
     uint32_t v;
-    if (e.kind == Kind::junction)
+    if (board::kPinPolarities && e.kind <= Kind::limit_invert)  // the pins as the board has them
+      v = 0;
+    else if (e.kind == Kind::junction)
       v = path::kJunctionDeviationUm;
     else if (e.kind == Kind::steps)
       v = spm;
@@ -120,6 +124,24 @@ void store(Values& b) {
   hal::eeprom::update(kStoredAt, &b, Values::kSummed + 2);
 }
 
+// The heater's gains in force (an M301's, an autotune's) in place of the
+// block's: what `$$` shows and a change stores.
+void gains_in_force(Values& b) {
+  if (!board::kHeater) return;
+  constexpr uint8_t p = Table::first(Kind::gain_p);
+  const am::PidGains& g = heater::gains();
+  b.value[p] = g.kp_milli;
+  b.value[p + 1] = g.ki_milli;
+  b.value[p + 2] = g.kd_milli;
+}
+
+// The block in force: the EEPROM's (the defaults if it is bad), with the
+// gains the heater runs on.
+void read_in_force(Values& b) {
+  read(b);
+  gains_in_force(b);
+}
+
 // Axis a's value of a per-axis kind, switch k's of a per-switch kind, a
 // single kind's.
 template <Kind K>
@@ -138,6 +160,12 @@ void apply(const Values& b) {
   gcode::rescale();
   path::set_junction_um(value<Kind::junction>(b));
   reply::set_marlin(value<Kind::protocol>(b) != 0);  // from the next line on (board::kProtocolSwitch)
+  if (board::kPinPolarities)
+    engine::set_polarities(uint8_t(value<Kind::dir_invert>(b)),
+                           Endstops::count && value<Kind::limit_invert>(b) ? Endstops::pins : 0);
+  // The block's gains are within HeaterPid's ranges (the table's: validate()).
+  if (board::kHeater)
+    heater::set_gains(am::PidGains{value<Kind::gain_p>(b), value<Kind::gain_i>(b), value<Kind::gain_d>(b)});
   if (!Endstops::count) return;
   limits::soft_limits = value<Kind::soft_limits>(b) != 0;
   limits::homing_enabled = value<Kind::homing>(b) != 0;
@@ -207,7 +235,7 @@ void write_value(uint32_t v) {
 void list(bool marlin_lines) {
   static const char kCodes[][5] PROGMEM = {"M92", "M203", "M201"};
   Values b;
-  read(b);
+  read_in_force(b);
   char line[24];
   for (uint8_t i = 0; i < Table::kCount; ++i) {
     const Entry e = Table::at(i);
@@ -243,7 +271,7 @@ void change(const char* text) {
   if (strcmp_P(text, PSTR("RST=$")) == 0) {
     defaults(b);
   } else {
-    read(b);
+    read_in_force(b);
     uint16_t n = 0;
     uint8_t digits = 0;
     for (; *text >= '0' && *text <= '9' && digits < 4; ++text, ++digits) n = uint16_t(n * 10 + (*text - '0'));
@@ -266,9 +294,10 @@ namespace {
     defaults(b);
     return commit(b);
   }
-  read(b);
+  read_in_force(b);
   // M500 stores the settings in force (what the EEPROM holds already,
-  // unless its block was bad: then the defaults); M92, M201, M203, M205
+  // unless its block was bad: then the defaults; the heater's gains as it
+  // runs on them); M92, M201, M203, M205
   // set every word's setting, all or none.
   for (;;) {
     while (*words == ' ' || *words == '\t') ++words;
@@ -292,6 +321,12 @@ namespace {
 }
 
 }  // namespace
+
+void store_gains() {
+  Values b;
+  read_in_force(b);
+  store(b);
+}
 
 void marlin(uint16_t code, char* words) {
   if (code == 501) {  // the block as at boot: its defaults and its line if it is bad

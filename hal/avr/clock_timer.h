@@ -20,8 +20,9 @@
 //   count() reads TCNT0, overflow_pending() TOV0: set by the wrap from 0xFF
 //   to 0, cleared by the hardware when the vector is entered.
 //
-//   Registers: the ATmega328P keeps Timer0 in TCCR0A/TCCR0B, its flags in
-//   TIFR0 and its mask in TIMSK0 (datasheet ch. 14); the ATmega16/32 in one
+//   Registers: the ATmega328P and ATmega1284P keep Timer0 in TCCR0A/TCCR0B,
+//   its flags in TIFR0 and its mask in TIMSK0 (datasheet ch. 14); the
+//   ATmega16/32 in one
 //   TCCR0 (FOC0, WGM00, COM01:0, WGM01, CS02:0), TIFR and TIMSK, shared with
 //   Timer1 and Timer2 (datasheets "8-bit Timer/Counter0"). CS codes are the
 //   same on both: 8 = 010, 64 = 011. The vector is TIMER0_OVF_vect on both.
@@ -57,6 +58,16 @@ struct ClockTimer {
       TCCR0A = 0;  // normal mode, OC0A/OC0B disconnected
       TCCR0B = cs;
     }
+    TIFR0 = _BV(TOV0);  // write one to clear
+    TIMSK0 |= _BV(TOIE0);
+  }
+  static uint8_t count() { return TCNT0; }
+  static bool overflow_pending() { return (TIFR0 & _BV(TOV0)) != 0; }
+#elif defined(__AVR_ATmega1284P__)
+  static_assert(!shares_pwm8, "no 8-bit PWM HAL on the ATmega1284P: the time base owns Timer0 there");
+  static void init() {
+    TCCR0A = 0;  // normal mode, OC0A/OC0B disconnected
+    TCCR0B = cs;
     TIFR0 = _BV(TOV0);  // write one to clear
     TIMSK0 |= _BV(TOIE0);
   }

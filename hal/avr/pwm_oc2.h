@@ -1,4 +1,5 @@
-// Timer2 fast PWM on OC2 (PD7) of the ATmega16/32, for a heater's MOSFET:
+// Timer2 fast PWM on OC2 (PD7) of the ATmega16/32 (OC2A, the same pin, on
+// the ATmega1284P), for a heater's MOSFET:
 // duty 0 is no pulse at all.
 //
 // Contract
@@ -20,29 +21,45 @@
 #include "claims.h"
 #include "gpio.h"
 
-#if defined(__AVR_ATmega16__) || defined(__AVR_ATmega32__)
+#if defined(__AVR_ATmega16__) || defined(__AVR_ATmega32__) || defined(__AVR_ATmega1284P__)
 namespace hal {
+
+namespace pwm_oc2_detail {
+#if defined(TCCR2A)
+// The ATmega1284P's Timer2 (OC2A on the same PD7): COM2A1:0 and WGM21:20 in
+// TCCR2A, the clock select in TCCR2B (WGM22 = 0 there), the same CS codes.
+inline void mode(uint8_t com) {
+  TCCR2A = uint8_t(com | _BV(WGM21) | _BV(WGM20));
+  TCCR2B = _BV(CS22) | _BV(CS20);
+}
+inline void duty(uint8_t value) { OCR2A = value; }
+constexpr uint8_t kConnect = _BV(COM2A1);
+#else
+inline void mode(uint8_t com) { TCCR2 = uint8_t(com | _BV(WGM21) | _BV(WGM20) | _BV(CS22) | _BV(CS20)); }
+inline void duty(uint8_t value) { OCR2 = value; }
+constexpr uint8_t kConnect = _BV(COM21);
+#endif
+}  // namespace pwm_oc2_detail
 
 struct PwmOc2 {
   using OutPin = Pin<'D', 7>;
   static constexpr uint32_t claims = claim::timer2 | claim::oc2a;
   static constexpr uint16_t prescaler = 128;
   static constexpr uint32_t frequency_hz() { return F_CPU / prescaler / 256; }
-  static constexpr uint8_t kMode = _BV(WGM21) | _BV(WGM20) | _BV(CS22) | _BV(CS20);
 
   static void init() {
-    OCR2 = 0;
+    pwm_oc2_detail::duty(0);
     OutPin::low();
     OutPin::output();
-    TCCR2 = kMode;  // COM21:0 = 00: disconnected
+    pwm_oc2_detail::mode(0);  // COM2x1:0 = 00: disconnected
   }
   static void set(uint8_t duty) {
     if (duty == 0) {
-      TCCR2 = kMode;  // PD7 is its PORT bit again: low
+      pwm_oc2_detail::mode(0);  // PD7 is its PORT bit again: low
       return;
     }
-    OCR2 = duty;
-    TCCR2 = kMode | _BV(COM21);
+    pwm_oc2_detail::duty(duty);
+    pwm_oc2_detail::mode(pwm_oc2_detail::kConnect);
   }
 };
 

@@ -92,6 +92,8 @@ std::optional<std::pair<char, int>> oc_pin(const std::string& mcu, const std::st
       {"atmega328p", {{"MARK", {'D', 0}}, {"OC0A", {'D', 6}}, {"OC0B", {'D', 5}}, {"OC1A", {'B', 1}},
                       {"OC1B", {'B', 2}}, {"OC2A", {'B', 3}}, {"OC2B", {'D', 3}}}},
       {"atmega32", {{"MARK", {'B', 0}}, {"OC0", {'B', 3}}, {"OC1A", {'D', 5}}, {"OC1B", {'D', 4}}, {"OC2", {'D', 7}}}},
+      {"atmega1284p", {{"MARK", {'B', 0}}, {"OC0A", {'B', 3}}, {"OC0B", {'B', 4}}, {"OC1A", {'D', 5}}, {"OC1B", {'D', 4}},
+                       {"OC2A", {'D', 7}}, {"OC2B", {'D', 6}}}},
       {"atmega16", {{"MARK", {'B', 0}}, {"OC0", {'B', 3}}, {"OC1A", {'D', 5}}, {"OC1B", {'D', 4}}, {"OC2", {'D', 7}}}},
   };
   auto m = table.find(mcu);

@@ -11,7 +11,7 @@
 #                                 and start to fail if stock ever gets fixed)
 #   tests/calibration/run-stock.sh  prints the stock measurements themselves
 set(_calib_dir ${CMAKE_CURRENT_LIST_DIR})
-set(_calib_mcus atmega328p atmega32)   # both at 16 MHz
+set(_calib_mcus atmega328p atmega32 atmega1284p)   # all at 16 MHz
 set(_calib_bin ${CMAKE_BINARY_DIR}/calibration-avr)
 if(NOT AVRMOTION_TOOLCHAIN)
   set(AVRMOTION_TOOLCHAIN ${CMAKE_SOURCE_DIR}/toolchain/avr-gcc.cmake)

@@ -20,6 +20,8 @@ using namespace am::settings;
 using Direct = Layout<4, 0x07, false>;
 using Cnc = Layout<4, 0, false>;
 using Printer = Layout<4, 0x07, true>;
+// The m1284: the printer's with the pin polarities.
+using Whole = Layout<4, 0x07, true, true>;
 
 std::vector<uint16_t> numbers_of(uint8_t count, Entry (*at)(uint8_t)) {
   std::vector<uint16_t> n;
@@ -46,6 +48,19 @@ TEST(Settings, TheLayoutsListGrblsNumbersInOrder) {
   EXPECT_EQ(Direct::find(103 + 30), -1);
   EXPECT_EQ(Cnc::find(20), -1);
   EXPECT_EQ(unsigned(Cnc::Values::kSummed), 4u + 4u * 14);  // and the sum: 62 bytes of EEPROM
+}
+
+TEST(Settings, ThePolaritiesComeFirstWhereTheBoardHasThem) {
+  std::vector<uint16_t> whole = {3, 5};
+  for (uint16_t n : numbers_of(Printer::count(), Printer::at)) whole.push_back(n);
+  EXPECT_EQ(numbers_of(Whole::count(), Whole::at), whole);
+  // No switches: the direction mask alone.
+  using NoSwitch = Layout<4, 0, false, true>;
+  std::vector<uint16_t> no_switch = {3};
+  for (uint16_t n : numbers_of(Cnc::count(), Cnc::at)) no_switch.push_back(n);
+  EXPECT_EQ(numbers_of(NoSwitch::count(), NoSwitch::at), no_switch);
+  EXPECT_EQ(Printer::find(3), -1);
+  EXPECT_EQ(Printer::find(5), -1);
 }
 
 // A block as the m32 images' defaults make it (1000 steps/mm, 2400 mm/min,
@@ -188,6 +203,33 @@ TEST(Settings, EveryRangeEdgeOfEveryEntry) {
     }
   }
   EXPECT_EQ(edges, 2 * (Printer::count() - 2));  // all but the read-only $21 and $23
+}
+
+// $3 takes every mask of the four axes and nothing above; $5 is 0 or 1;
+// both whole numbers; a refusal leaves the block as it was.
+TEST(Settings, ThePolaritiesTakeTheirMasksAndNothingElse) {
+  const EngineLimits<4> limits{{40000, 40000, 40000, 40000}, 800000};
+  auto b = defaults<Whole>();
+  ASSERT_EQ(Whole::validate(b, limits), Error::none);
+  for (int v = 0; v <= 120; ++v) {
+    const auto before = b;
+    const Error e = Whole::set(b, 3, std::to_string(v).c_str(), limits);
+    if (v < 16) {
+      EXPECT_EQ(e, Error::none) << v;
+      EXPECT_EQ(b.value[Whole::find(3)], uint32_t(v));
+    } else {
+      EXPECT_EQ(e, Error::out_of_range) << v;
+      EXPECT_EQ(std::memcmp(&b, &before, sizeof b), 0) << v;
+    }
+    const Error l = Whole::set(b, 5, std::to_string(v).c_str(), limits);
+    EXPECT_EQ(l, v < 2 ? Error::none : Error::out_of_range) << v;
+  }
+  EXPECT_EQ(Whole::set(b, 3, "1.0", limits), Error::bad_number);
+  EXPECT_EQ(Whole::set(b, 5, "-1", limits), Error::out_of_range);
+  // A stored block whose mask is beyond the axes is not taken.
+  b.value[Whole::find(3)] = 16;
+  Whole::seal(b, 3);
+  EXPECT_EQ(Whole::examine(b, 3, limits), Loaded::corrupt);
 }
 
 TEST(Settings, TheEngineLimitsHoldWhateverIsSet) {

@@ -42,6 +42,7 @@ inline Vectors vectors_of(const std::string& mcu) {
   if (mcu == "atmega328p") return {11, 16};
   if (mcu == "atmega32") return {7, 11};
   if (mcu == "atmega16") return {6, 9};
+  if (mcu == "atmega1284p") return {13, 18};
   ADD_FAILURE() << "no vector table for " << mcu;
   return {0, 0};
 }

@@ -14,11 +14,11 @@ struct Image {
 
 class Boot : public ::testing::TestWithParam<Image> {};
 
-// The printer image speaks Marlin (firmware/boards/m32.h); every other
-// image speaks grbl.
-bool marlin(const Image& img) { return std::string(img.name) == "m32"; }
+// The printer images speak Marlin (firmware/boards/m32.h, m1284.h); every
+// other image speaks grbl.
+bool marlin(const Image& img) { return std::string(img.name) == "m32" || std::string(img.name) == "m1284"; }
 // Whether the image takes the direct controls (MOVE, POS, ...) beside
-// G-code: the printer and the m32-cnc do not.
+// G-code: the m32 printer and the m32-cnc do not.
 bool has_commands(const sim::Machine& m) { return m.board().program & am::kProgramCommands; }
 
 TEST_P(Boot, BannerNamesBoardAndClockThenAnswers) {
@@ -37,8 +37,13 @@ TEST_P(Boot, BannerNamesBoardAndClockThenAnswers) {
     // Marlin answers a command it does not have with an echo and ok.
     EXPECT_EQ(r[0].answer, "ok");
     EXPECT_EQ(r[1].answer, "ok");
-    EXPECT_EQ(m->serial().messages(),
-              (std::vector<std::string>{"echo:Unknown command: \"POS\"", "echo:Unknown command: \"NOPE\""}));
+    const std::vector<std::string> msgs = m->serial().messages();
+    ASSERT_EQ(msgs.size(), 2u);
+    if (has_commands(*m))
+      EXPECT_EQ(msgs[0].rfind("pos X:0 Y:0 Z:0 E:0", 0), 0u) << msgs[0];
+    else
+      EXPECT_EQ(msgs[0], "echo:Unknown command: \"POS\"");
+    EXPECT_EQ(msgs[1], "echo:Unknown command: \"NOPE\"");
   } else {
     EXPECT_EQ(m->serial().banner(), "Grbl 1.1h ['$' for help]");
     EXPECT_EQ(got[1], "[MSG:" + expected + "]");
@@ -81,6 +86,7 @@ INSTANTIATE_TEST_SUITE_P(Images, Boot,
                                            Image{"m32", "m32", "atmega32", 16000000},
                                            Image{"m32-cnc", "m32-cnc", "atmega32", 16000000},
                                            Image{"m32-direct", "m32-direct", "atmega32", 16000000},
+                                           Image{"m1284", "m1284", "atmega1284p", 16000000},
                                            Image{"m16", "m16", "atmega16", 16000000},
                                            Image{"m16-8mhz", "m16", "atmega16", 8000000}),
                          [](const ::testing::TestParamInfo<Image>& info) {

@@ -1,8 +1,8 @@
 // A real printer host prints a slicer-style file on the simulated printer:
 // printrun's printcore (Debian's printrun-common, which scripts/setup.sh
 // installs; tests/sim/printcore_stream.py drives it) streams thousands of
-// numbered, checksummed lines through avrmotion-sim --pty to the m32 image,
-// which speaks Marlin's protocol (docs/protocol.md). One line's checksum is
+// numbered, checksummed lines through avrmotion-sim --pty to the m32 image
+// and to the m1284, which speak Marlin's protocol (docs/protocol.md). One line's checksum is
 // broken on the way: the printer asks for it again and the print still ends
 // exactly. Every line is acknowledged once, and every axis ends on
 // round(target x steps/mm).
@@ -103,7 +103,12 @@ using printcore_run::summary_number;
 
 }  // namespace
 
-TEST(Printcore, ASlicerPrintStreamsThroughThePtyWithAResendAndEndsExactly) {
+// The m32 printer, and the m1284 (everything in one image: Marlin's style
+// by default).
+class PrintcoreOn : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(PrintcoreOn, ASlicerPrintStreamsThroughThePtyWithAResendAndEndsExactly) {
+  const char* const image = GetParam();
   const Print print = slicer_print(20, 100);
   size_t sent_lines = 0;  // what printcore sends of the file: comments go
   for (const std::string& l : print.lines) sent_lines += l[0] != ';';
@@ -116,7 +121,7 @@ TEST(Printcore, ASlicerPrintStreamsThroughThePtyWithAResendAndEndsExactly) {
   // printcore opens the port, closes it and opens it again (its parity
   // workaround for Arduino boards): --linger 0 could end the run between the
   // two, and printcore would wait on a port nobody serves.
-  ptytest::SimProcess sim({"--board", "m32", "--pty", "--speed", "max", "--linger", "1", "--max-seconds", "300",
+  ptytest::SimProcess sim({"--board", image, "--pty", "--speed", "max", "--linger", "1", "--max-seconds", "300",
                            "--report", report});
   const std::string port = sim.pty_path();
   ASSERT_FALSE(port.empty()) << sim.stderr_text();
@@ -165,7 +170,7 @@ TEST(Printcore, ASlicerPrintStreamsThroughThePtyWithAResendAndEndsExactly) {
       << json;
   EXPECT_EQ(report_string(json, "errors").rfind("[\"" + expected_error + "\"", 0), 0u) << report_string(json, "errors");
   EXPECT_EQ(report_number(json, "", "starvations"), 0);
-  const am::BoardDescriptor b = sim::read_board_descriptor(simtest::image("m32"));
+  const am::BoardDescriptor b = sim::read_board_descriptor(simtest::image(image));
   const auto expected_steps = [&](char axis, int64_t um) {
     for (uint8_t i = 0; i < b.axis_count; ++i)
       if (b.axes[i].name == axis) return double(round_half_away(um * int64_t(b.axes[i].steps_per_m), 1000000));
@@ -183,6 +188,13 @@ TEST(Printcore, ASlicerPrintStreamsThroughThePtyWithAResendAndEndsExactly) {
   EXPECT_LE(report_number(json, "motion", "last_step_s"), report_number(json, "", "seconds"));
   EXPECT_NEAR(report_number(json, "motion", "last_step_s") - report_number(json, "motion", "first_step_s"),
               report_number(json, "motion", "motion_s"), 1e-4);
-  std::printf("printcore print: %zu lines, %.1f s simulated in %.1f s wall\n", sent_lines,
+  std::printf("printcore print on %s: %zu lines, %.1f s simulated in %.1f s wall\n", image, sent_lines,
               report_number(json, "", "seconds"), report_number(json, "pty", "wall_seconds"));
 }
+
+INSTANTIATE_TEST_SUITE_P(Printers, PrintcoreOn, ::testing::Values("m32", "m1284"),
+                         [](const ::testing::TestParamInfo<const char*>& info) {
+                           std::string n = info.param;
+                           for (char& c : n) c = c == '-' ? '_' : c;
+                           return n;
+                         });

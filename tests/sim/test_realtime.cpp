@@ -1,13 +1,19 @@
 // grbl's realtime bytes on the real images that take them (firmware/apps/
 // cnc/realtime.h): the m32-cnc (X at 1000 steps/mm, 500 mm/s^2: 500000
-// steps/s^2, board defaults, on the 16 MHz step timer) and the uno-grbl (the
+// steps/s^2, board defaults, on the 16 MHz step timer), the uno-grbl (the
 // motor shield's X at 25 steps/mm, 800 steps/s^2, its coils stepped by the
-// same timer): `?` mid-move reports where the motors are, `!` slows the move
+// same timer) and the m1284 (the m32-cnc's axes; Marlin's style by default,
+// so its EEPROM holds `$200=0` from the start): `?` mid-move reports where the motors are, `!` slows the move
 // to rest at its acceleration and `~` finishes it exactly, Ctrl-X stops the
 // steps at once and restarts the chip.
+#include <avr_eeprom.h>
+#include <sim_avr.h>
+
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "sim_fixture.h"
 
@@ -25,12 +31,35 @@ struct Image {
   size_t at[3];                                               // steps at which the tests act mid-move
   double software_late;                                       // cycles a software-pulsed step may come late
                                                               // (docs/step-engine.md)
+  bool marlin_default;                                        // set to grbl's style by `$200=0` first
   double rate() const { return feed / 60.0 * steps_per_mm; }  // steps/s
 };
 const Image kImages[] = {
-    {"m32-cnc", 1000, 500000, 1200, ",0.000,0.000,0.000", {300, 6000, 25000}, 48},
-    {"uno-grbl", 25, 800, 600, ",0.000,0.000", {20, 300, 600}, 48},
+    {"m32-cnc", 1000, 500000, 1200, ",0.000,0.000,0.000", {300, 6000, 25000}, 48, false},
+    {"uno-grbl", 25, 800, 600, ",0.000,0.000", {20, 300, 600}, 48, false},
+    {"m1284", 1000, 500000, 1200, ",0.000,0.000,0.000", {300, 6000, 25000}, 48, true},
 };
+
+// The EEPROM of an image once `$200=0` has been stored in it.
+std::vector<uint8_t> grbl_style_eeprom(const char* name) {
+  sim::Machine m(simtest::image(name));
+  m.serial().add_line("$200=0");
+  EXPECT_EQ(m.run_script(uint64_t(kTick)), sim::RunEnd::done);
+  avr_eeprom_desc_t d{nullptr, 0, 512};
+  avr_ioctl(m.avr(), AVR_IOCTL_EEPROM_GET, &d);
+  return d.ee ? std::vector<uint8_t>(d.ee, d.ee + 512) : std::vector<uint8_t>();
+}
+
+// A fresh machine of the image, in grbl's style from its banner on.
+std::unique_ptr<sim::Machine> machine(const Image& im) {
+  std::unique_ptr<sim::Machine> m(new sim::Machine(simtest::image(im.name)));
+  if (im.marlin_default) {
+    std::vector<uint8_t> ee = grbl_style_eeprom(im.name);
+    avr_eeprom_desc_t d{ee.data(), 0, uint32_t(ee.size())};
+    avr_ioctl(m->avr(), AVR_IOCTL_EEPROM_SET, &d);
+  }
+  return m;
+}
 
 // Runs until X has made `steps` steps.
 void run_to_step(sim::Machine& m, size_t steps) {
@@ -80,7 +109,8 @@ TEST(Realtime, StatusMidMoveIsWhereThePinsAre) {
   for (const Image& im : kImages) {
     const long total = std::lround(20 * im.steps_per_mm);
     for (size_t at : {im.at[0], im.at[1], size_t(total) - im.at[0]}) {
-      sim::Machine m(simtest::image(im.name));
+      const auto owned = machine(im);
+      sim::Machine& m = *owned;
       m.serial().add_line("G1 X20 F" + std::to_string(im.feed));
       run_to_step(m, at);
       const size_t before = m.axis('X')->step_cycles.size(), seen = m.serial().received().size();
@@ -126,7 +156,8 @@ TEST(Realtime, HoldSlowsToRestAndResumeEndsExactly) {
     // Steps from the cruise to rest: v^2 / 2a, and a margin.
     const size_t braking = size_t(im.rate() * im.rate() / (2 * a)) + 2;
     for (size_t at : im.at) {
-      sim::Machine m(simtest::image(im.name));
+      const auto owned = machine(im);
+      sim::Machine& m = *owned;
       m.serial().add_line("G1 X30 F" + std::to_string(im.feed));
       run_to_step(m, at);
       const uint64_t asked = m.cycles();
@@ -176,7 +207,8 @@ TEST(Realtime, HoldSlowsToRestAndResumeEndsExactly) {
 
 TEST(Realtime, CtrlXStopsTheStepsAtOnceAndRestarts) {
   for (const Image& im : kImages) {
-    sim::Machine m(simtest::image(im.name));
+    const auto owned = machine(im);
+    sim::Machine& m = *owned;
     m.serial().add_line("G1 X20 Y10 F" + std::to_string(im.feed));
     run_to_step(m, im.at[1]);
     const std::string banner = m.serial().banner();
@@ -226,7 +258,8 @@ TEST(Realtime, CtrlXStopsTheStepsAtOnceAndRestarts) {
 
 TEST(Realtime, CtrlXAtRestRestartsWithoutAnAlarm) {
   for (const Image& im : kImages) {
-    sim::Machine m(simtest::image(im.name));
+    const auto owned = machine(im);
+    sim::Machine& m = *owned;
     ASSERT_EQ(m.run([&] { return m.serial().banner_seen(); }, uint64_t(kTick)), sim::RunEnd::done);
     const size_t banner = m.serial().received().size();
     m.serial().send_raw("\x18");

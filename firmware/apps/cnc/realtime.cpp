@@ -99,8 +99,10 @@ void poll() {
 
 }  // namespace realtime
 
+// In Marlin's style (an image with both, $200=1) the bytes are a line's
+// text: a host's M117 may say "Done!".
 bool hal::uart::take_realtime(uint8_t c) {
-  if (!board::kRealtime) return false;
+  if (!board::kRealtime || reply::marlin()) return false;
   using namespace realtime;
   switch (c) {
     case '?': asked |= kStatus; return true;

@@ -22,14 +22,14 @@
 #define MEM(r) _SFR_MEM_ADDR(r)
 
 /* ATmega16/32 spellings of the ATmega328P timer-1 names used here, and the
- * OC1A/OC1B pins of each part (the runner maps "OC1A" etc. the same way).
+ * OC1A/OC1B pins of each part (the ATmega1284P: the 328P's names, the 32's pins) (the runner maps "OC1A" etc. the same way).
  * Timer-1 registers are always accessed with LDS/STS (2 cycles on every
  * part), so cycle counts do not change between parts. */
 #ifndef TIMSK1
 #define TIMSK1 TIMSK
 #define TIFR1  TIFR
 #endif
-#if defined(__AVR_ATmega16__) || defined(__AVR_ATmega32__)
+#if defined(__AVR_ATmega16__) || defined(__AVR_ATmega32__) || defined(__AVR_ATmega1284P__)
 #define OC1A_DDR DDRD
 #define OC1A_BIT 5
 #define OC1B_DDR DDRD

@@ -17,13 +17,12 @@
  *   32 * (1 + 6) = 224
  */
 #include "calib.h"
-// MCUS: atmega328p (uses the A/B compare units of timers 0 and 2)
+// MCUS: atmega328p atmega1284p (uses the A/B compare units of timers 0 and 2)
 
 	.global main
 main:
-	ldi r16, (1 << PD6)			; OC0A
-	out IO(DDRD), r16
-	ldi r16, (1 << PB1) | (1 << PB2) | (1 << PB3)	; OC1A OC1B OC2A
+	ldi r16, 0xff				; every pin of B and D an output:
+	out IO(DDRD), r16			; the OC pins are there on both parts
 	out IO(DDRB), r16
 
 	ldi r16, 24

@@ -9,14 +9,13 @@
  *   1 * (1 + 127) = 128
  */
 #include "calib.h"
-// MCUS: atmega328p (uses the A/B compare units of timers 0 and 2)
+// MCUS: atmega328p atmega1284p (uses the A/B compare units of timers 0 and 2)
 // BUDGET 200000
 
 	.global main
 main:
-	ldi r16, (1 << PD6)
-	out IO(DDRD), r16
-	ldi r16, (1 << PB1) | (1 << PB3)
+	ldi r16, 0xff				; every pin of B and D an output:
+	out IO(DDRD), r16			; the OC pins are there on both parts
 	out IO(DDRB), r16
 
 	ldi r16, 1

@@ -13,7 +13,7 @@
  */
 #include "calib.h"
 
-#if defined(__AVR_ATmega16__) || defined(__AVR_ATmega32__)
+#if defined(__AVR_ATmega16__) || defined(__AVR_ATmega32__) || defined(__AVR_ATmega1284P__)
 #define NEIGHBOUR_PORT PORTD	/* OC1A = PD5; PD7 is free */
 #define NEIGHBOUR_DDR  DDRD
 #define NEIGHBOUR_BIT  7

@@ -23,7 +23,11 @@
 #define TXEN_  TXEN0
 #define UDRIE_ UDRIE0
 #define FRAME_8N1 ((1 << UCSZ01) | (1 << UCSZ00))
+#ifdef USART0_UDRE_vect_num
+#define UDRE_VECTOR __vector_21	/* ATmega1284P: USART0 */
+#else
 #define UDRE_VECTOR __vector_19
+#endif
 #else
 #define UCSRA_ UCSRA
 #define UCSRB_ UCSRB

@@ -1,0 +1,190 @@
+// The m1284 image (firmware/boards/m1284.h): the ATmega32 board's printer
+// with an ATmega1284P in its socket, every part of the cnc program in one
+// image. What only this image has, on the real image: the pin polarities
+// ($3 over every mask, $5 with normally-closed switches: homing from both
+// sides and a hard limit), the heater's gains as settings ($300..302: M301,
+// a power cycle, M502), Marlin's style by default with the realtime bytes
+// left in the text of its lines, and grbl's after `$200=0` with them taken.
+// The other suites run their parts on the m32 images (test_realtime.cpp
+// runs this one too).
+#include <avr_eeprom.h>
+#include <sim_avr.h>
+
+#include <cstdlib>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "endstops.h"
+#include "sim_fixture.h"
+
+namespace {
+
+const char kImage[] = "m1284";
+constexpr uint32_t kEepromBytes = 4096;
+
+std::vector<uint8_t> eeprom_of(sim::Machine& m) {
+  avr_eeprom_desc_t d{nullptr, 0, kEepromBytes};
+  avr_ioctl(m.avr(), AVR_IOCTL_EEPROM_GET, &d);
+  EXPECT_NE(d.ee, nullptr);
+  return d.ee ? std::vector<uint8_t>(d.ee, d.ee + kEepromBytes) : std::vector<uint8_t>();
+}
+
+void set_eeprom(sim::Machine& m, std::vector<uint8_t> bytes) {
+  avr_eeprom_desc_t d{bytes.data(), 0, uint32_t(bytes.size())};
+  avr_ioctl(m.avr(), AVR_IOCTL_EEPROM_SET, &d);
+}
+
+// Sends `lines` and runs until they are answered and motion has ended;
+// returns the index of the first new response.
+size_t send(sim::Machine& m, const std::vector<std::string>& lines, double seconds = 20) {
+  const size_t first = m.serial().responses().size();
+  for (const std::string& l : lines) m.serial().add_line(l);
+  EXPECT_EQ(m.run_script(uint64_t(seconds * m.f_cpu())), sim::RunEnd::done);
+  return first;
+}
+
+bool ok(sim::Machine& m, size_t i) { return sim::SerialHost::is_ok(m.serial().responses().at(i).answer); }
+
+// The last received line that starts with `prefix` ("" if none).
+std::string last_starting(sim::Machine& m, const std::string& prefix) {
+  const std::vector<std::string>& r = m.serial().received();
+  for (auto it = r.rbegin(); it != r.rend(); ++it)
+    if (it->rfind(prefix, 0) == 0) return *it;
+  return "";
+}
+
+// M114's `Count X:.. Y:.. Z:.. E:..` value of axis `a`.
+long count_of(const std::string& m114, char a) {
+  const size_t at = m114.find(std::string(" ") + a + ":", m114.find("Count"));
+  return at == std::string::npos ? -999999 : std::strtol(m114.c_str() + at + 3, nullptr, 10);
+}
+
+}  // namespace
+
+// Every mask of the four axes: a move of +1 mm on each axis reaches the
+// pins backwards on exactly the masked axes (the simulator decodes the
+// direction lines), and the firmware's counts go forward on all of them.
+TEST(M1284, DirectionInvertMaskFlipsExactlyTheMaskedAxes) {
+  sim::Machine m(simtest::image(kImage));
+  const char axes[] = {'X', 'Y', 'Z', 'E'};
+  ASSERT_TRUE(ok(m, send(m, {"G91", "M83"})));
+  long pins[4] = {0, 0, 0, 0};
+  for (int mask = 0; mask < 16; ++mask) {
+    const size_t first = send(m, {"$3=" + std::to_string(mask), "G1 X1 Y1 Z1 E1 F600", "M400", "M114"});
+    ASSERT_TRUE(ok(m, first)) << mask;
+    ASSERT_TRUE(ok(m, first + 1)) << mask;
+    const std::string m114 = last_starting(m, "X:");
+    for (int a = 0; a < 4; ++a) {
+      const long now = long(m.axis(axes[a])->position);
+      EXPECT_EQ(now - pins[a], (mask >> a & 1) ? -1000 : 1000) << "mask " << mask << " axis " << axes[a];
+      pins[a] = now;
+      EXPECT_EQ(count_of(m114, axes[a]), 1000L * (mask + 1)) << "mask " << mask << " axis " << axes[a];
+    }
+  }
+  // Beyond the axes, and not a whole number: refused, the mask kept.
+  const size_t refused = send(m, {"$3=16", "$3=1.5", "M503"});
+  EXPECT_FALSE(ok(m, refused));
+  EXPECT_FALSE(ok(m, refused + 1));
+  EXPECT_EQ(last_starting(m, "echo:  $3="), "echo:  $3=15");
+}
+
+// Normally-closed switches (their pins high while pressed): with $5=1 the
+// homing finds each within one step from either side, as the normally-open
+// ones are found (test_homing.cpp); without it an open contact reads
+// closed, the homing backs off a switch that never opens and says so.
+TEST(M1284, LimitInvertHomesOnNormallyClosedSwitchesFromEitherSide) {
+  for (const int64_t at : {-2345L, -1L, 0L, 640L}) {
+    sim::Machine m(simtest::image(kImage));
+    sim::EndstopParams nc;
+    nc.normally_closed = true;
+    sim::Endstops switches(m, nc);
+    for (char a : {'X', 'Y', 'Z'}) switches.set_position(a, at);
+    const size_t first = send(m, {"$5=1", "G28", "M114"}, 60);
+    ASSERT_TRUE(ok(m, first)) << at;
+    ASSERT_TRUE(ok(m, first + 1)) << "switches at " << at;
+    const std::string m114 = last_starting(m, "X:");
+    for (char a : {'X', 'Y', 'Z'}) {
+      EXPECT_EQ(count_of(m114, a), 0) << a;
+      // 1 mm pull-off: the trip point within one step of the switch.
+      const int64_t trip = m.axis(a)->position - 1000;
+      EXPECT_LE(std::llabs(trip - at), 1) << a << ": switch at " << at << ", stopped at " << trip;
+      EXPECT_FALSE(switches.closed(a));
+    }
+  }
+  sim::Machine m(simtest::image(kImage));
+  sim::EndstopParams nc;
+  nc.normally_closed = true;
+  sim::Endstops switches(m, nc);
+  switches.set_position('X', -300);
+  const size_t first = send(m, {"G28 X0"}, 60);
+  EXPECT_FALSE(ok(m, first));
+  EXPECT_EQ(m.serial().responses().at(first).reason, "homing: endstop stays closed");
+  EXPECT_EQ(m.axis('X')->position, 1000);  // the back-off away from it, and no further
+}
+
+// A normally-closed switch met by a move (soft limits off): the steps stop
+// within one step of it, the machine refuses the next move, M999 unlocks.
+TEST(M1284, AHardLimitOnANormallyClosedSwitchStopsAtIt) {
+  sim::Machine m(simtest::image(kImage));
+  sim::EndstopParams nc;
+  nc.normally_closed = true;
+  sim::Endstops switches(m, nc);
+  switches.set_position('X', -3000);
+  const size_t first = send(m, {"$5=1", "$20=0", "G1 X-10 F1200", "M400", "G1 X1"}, 30);
+  ASSERT_TRUE(ok(m, first + 1));
+  EXPECT_EQ(m.axis('X')->position, -3000);  // the switch closes at -3000: that step is the last
+  EXPECT_FALSE(ok(m, first + 4));
+  EXPECT_TRUE(ok(m, send(m, {"M999", "G1 X0 F1200"}) + 1));
+}
+
+// The heater's gains are the settings $300..302 here: M301 stores them at
+// once, a power cycle runs on them, M502 brings back Marlin's defaults. One
+// block in the EEPROM: nothing beyond it is written.
+TEST(M1284, TheHeatersGainsAreSettingsThroughAPowerCycle) {
+  std::vector<uint8_t> ee;
+  {
+    sim::Machine m(simtest::image(kImage));
+    const size_t first = send(m, {"M301 P30.5 I2.25 D100"});
+    ASSERT_TRUE(ok(m, first));
+    ee = eeprom_of(m);
+  }
+  size_t written = 0;
+  for (size_t i = 0; i < ee.size(); ++i)
+    if (ee[i] != 0xFF) written = i + 1;
+  EXPECT_LE(written, 4u + 4u * 35 + 2);  // header, 35 values, sum (docs/settings.md)
+  sim::Machine m(simtest::image(kImage));
+  set_eeprom(m, ee);
+  send(m, {"M503", "M301"});
+  EXPECT_EQ(last_starting(m, "echo:  $300="), "echo:  $300=30.500");
+  EXPECT_EQ(last_starting(m, "echo:  $301="), "echo:  $301=2.250");
+  EXPECT_EQ(last_starting(m, "echo:  $302="), "echo:  $302=100.000");
+  EXPECT_NE(last_starting(m, "echo: p:30.50 i:2.25 d:100.00"), "");
+  send(m, {"M502", "M301"});
+  EXPECT_NE(last_starting(m, "echo: p:22.20 i:1.08 d:114.00"), "");
+}
+
+// Marlin's style (the default): `!`, `~` and `?` in a line are its text,
+// a move runs through an M117 that says them. grbl's after `$200=0`: the
+// same byte mid-move is a feed hold.
+TEST(M1284, RealtimeBytesAreTextInMarlinsStyleAndCommandsInGrbls) {
+  sim::Machine m(simtest::image(kImage));
+  const size_t first = send(m, {"G1 X20 F1200", "M117 Done! ~ ?", "M400", "M114"});
+  EXPECT_TRUE(ok(m, first + 1));
+  EXPECT_EQ(last_starting(m, "echo:Done"), "echo:Done! ~ ?");
+  EXPECT_EQ(count_of(last_starting(m, "X:"), 'X'), 20000);
+  EXPECT_EQ(m.axis('X')->position, 20000);
+
+  ASSERT_TRUE(ok(m, send(m, {"$200=0"})));
+  m.serial().add_line("G1 X0 F1200");
+  m.run([&] { return m.axis('X')->step_cycles.size() >= 25000; }, uint64_t(5 * m.f_cpu()));
+  m.serial().send_raw("!");
+  m.run([] { return false; }, uint64_t(0.5 * m.f_cpu()));
+  const int64_t held = m.axis('X')->position;
+  EXPECT_GT(held, 0);  // stopped short of the end
+  m.run([] { return false; }, uint64_t(0.5 * m.f_cpu()));
+  EXPECT_EQ(m.axis('X')->position, held);
+  m.serial().send_raw("~");
+  EXPECT_EQ(m.run_script(uint64_t(10 * m.f_cpu())), sim::RunEnd::done);
+  EXPECT_EQ(m.axis('X')->position, 0);
+}
