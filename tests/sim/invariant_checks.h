@@ -15,14 +15,19 @@
 
 namespace invtest {
 
-// A clamp the firmware says before a move runs: `[MSG:F clamped to 20000]`.
-inline bool is_clamp(const std::string& l) { return l.rfind("[MSG:", 0) == 0 && l.find(" clamped to ") == 6; }
+// A clamp the firmware says before a move runs: `[MSG:F clamped to 20000]`
+// (grbl's style) or `echo:F clamped to 20000` (Marlin's, the m1284's).
+inline bool is_clamp(const std::string& l) {
+  return (l.rfind("[MSG:", 0) == 0 || l.rfind("echo:", 0) == 0) && l.find(" clamped to ") == 6;
+}
 
-// A refused line's two lines at `at`, its reason and grbl's `error:N`.
+// A refused line's two lines at `at`: its reason and grbl's `error:N`, or
+// Marlin's unknown-command echo and `ok`.
 inline bool refused(const std::vector<std::string>& got, size_t& at) {
-  const bool ok = got.at(at).rfind("[MSG:", 0) == 0 && got.at(at + 1).rfind("error:", 0) == 0;
+  const bool grbl = got.at(at).rfind("[MSG:", 0) == 0 && got.at(at + 1).rfind("error:", 0) == 0;
+  const bool marlin = got.at(at).rfind("echo:Unknown command:", 0) == 0 && got.at(at + 1) == "ok";
   at += 2;
-  return ok;
+  return grbl || marlin;
 }
 
 

@@ -174,6 +174,9 @@ TEST(Invariants, UnoShieldHalfStep) { check_axis({"uno", 'Y', "MODE Y2", 1, 2, k
 // The m32's direct controls are on its CNC image (the printer's takes G-code only).
 TEST(Invariants, M32StepDir) { check_axis({"m32-direct", 'X', nullptr, 1, 1, kSoftwareJitter}, 5, 120); }
 TEST(Invariants, M32StepDirE) { check_axis({"m32-direct", 'E', nullptr, 1, 1, kSoftwareJitter}, 6, 80); }
+// The m1284 with X's direction line inverted ($3=1): every step on the pins
+// the other way, the same schedule, the report the commanded count.
+TEST(Invariants, M1284StepDirInverted) { check_axis({"m1284", 'X', "$3=1", -1, 1, kSoftwareJitter}, 11, 120); }
 TEST(Invariants, M16StepDir) { check_axis({"m16", 'Z', nullptr, 1, 1, kSoftwareJitter}, 8, 80); }
 TEST(Invariants, M16Uln2003) { check_axis({"m16", 'U', nullptr, 2, 1, kSoftwareJitter}, 9, 80); }
 TEST(Invariants, M16At8MHzStepDir) { check_axis({"m16-8mhz", 'Z', nullptr, 1, 1, kSoftwareJitter}, 10, 80); }

@@ -180,6 +180,7 @@ const int kM16[] = {1, 2};
 }  // namespace
 
 TEST(Invariants, M32CoordinatedBlocks) { check_coordinated({"m32-direct", "XYZE", kUnits1, kSoftwareJitter, 40000}, 21, 60); }
+TEST(Invariants, M1284CoordinatedBlocks) { check_coordinated({"m1284", "XYZE", kUnits1, kSoftwareJitter, 40000}, 23, 60); }
 TEST(Invariants, UnoCoordinatedShield) { check_coordinated({"uno", "XY", kShield, kCoordinatedCoilJitter, 20000}, 22, 40); }
 TEST(Invariants, M16CoordinatedBlocks) { check_coordinated({"m16", "ZU", kM16, kSoftwareJitter, 20000}, 23, 40); }
 
