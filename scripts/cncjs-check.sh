@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # A manual check, not in CI (it downloads cncjs and its dependencies from the
 # npm registry, about 150 MB): cncjs, a grbl sender, streams a G-code file in
-# its Grbl mode to the m32-cnc image through avrmotion-sim --pty, and the
-# simulator's report must end on the file's last target.
+# its Grbl mode to the m32-cnc image (or BOARD's) through avrmotion-sim
+# --pty, and the simulator's report must end on the file's last target.
 #
 #   ./scripts/cncjs-check.sh [FILE]     (default: a generated square, 200 lines)
+#   BOARD=m1284 ./scripts/cncjs-check.sh   the m1284, in grbl's style by a
+#                                          stored `$200=0` (--save-eeprom)
 #
 # Installs cncjs, socket.io-client and jsonwebtoken into build/cncjs (npm,
 # Node.js 20), starts the simulator on a pty linked at build/cncjs/port,
@@ -22,6 +24,10 @@
 # report ends on the square's last target, X 1.234 Y 5.678 mm. The check
 # fails when a line is not acknowledged or, for the default file, the
 # report's X and Y are not that target.
+# With BOARD=m1284 (run 2026-12-02, the same cncjs): the banner in grbl's
+# style from the stored `$200=0`; `$$` answers the 35 settings, which
+# cncjs annotates ($3, $5, $100.. with its own names); 204 of 204 lines
+# acknowledged, no error, the report ends on X 1.234 Y 5.678 mm.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/setup.sh
@@ -49,7 +55,13 @@ fi
 
 secret=$(head -c 16 /dev/urandom | od -An -tx1 | tr -d ' \n')
 printf '{"secret":"%s","allowRemoteAccess":false}\n' "$secret" >"$work/cncrc"
-./build/sim/avrmotion-sim --board m32-cnc --pty --link "$work/port" --speed max --linger 0 \
+board=${BOARD:-m32-cnc}
+eeprom=()
+if [ "$board" = m1284 ]; then  # Marlin's style by default: grbl's stored first
+  printf '$200=0\n' | ./build/sim/avrmotion-sim --board m1284 --save-eeprom "$work/m1284.eeprom" >/dev/null
+  eeprom=(--eeprom "$work/m1284.eeprom")
+fi
+./build/sim/avrmotion-sim --board "$board" "${eeprom[@]}" --pty --link "$work/port" --speed max --linger 0 \
   --max-seconds 600 --report "$work/report.json" &
 sim=$!
 node "$work/node_modules/cncjs/bin/cncjs" --host 127.0.0.1 --port 8123 --config "$PWD/$work/cncrc" >"$work/cncjs.log" 2>&1 &

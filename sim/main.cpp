@@ -35,7 +35,7 @@ namespace {
 void usage() {
   std::cerr << "usage: avrmotion-sim (--board NAME | --elf FILE) [--input FILE|-] [--report FILE]\n"
                "                     [--plot FILE.svg] [--vcd FILE.vcd [--vcd-signals LIST]]\n"
-               "                     [--max-seconds S] [--progress] [--eeprom FILE]\n"
+               "                     [--max-seconds S] [--progress] [--eeprom FILE] [--save-eeprom FILE]\n"
                "       avrmotion-sim (--board NAME | --elf FILE) --pty [--link PATH] [--speed N|max] [--linger S]\n"
                "                     [--report FILE] [--plot FILE.svg] [--vcd ...] [--max-seconds S] [--progress]\n"
                "                     [--thermal-initial C] [--thermal-fault NAME@S] [--thermal-fan F@S]\n"
@@ -53,6 +53,7 @@ void usage() {
                "  --progress          progress on standard error about once a second, and at the end\n"
                "  --eeprom FILE       the EEPROM's first bytes from FILE at power-up (a board's stored\n"
                "                      settings, docs/settings.md); they live through every reset\n"
+               "  --save-eeprom FILE  the whole EEPROM into FILE at the end (for a later --eeprom)\n"
                "  --pty               the UART as a pseudo-terminal (its path on standard error) instead of\n"
                "                      --input; each open resets the MCU; ends when the client has closed\n"
                "  --link PATH         also a symlink PATH to the pseudo-terminal\n"
@@ -118,7 +119,7 @@ int main(int argc, char** argv) {
   sim::EndstopParams endstop_params;
   bool no_endstops = false;
   std::string lcd_file;
-  std::string eeprom_file;
+  std::string eeprom_file, save_eeprom_file;
   std::vector<std::pair<std::string, double>> key_script;
   sim::SpindleParams spindle;
   spindle.profile.clear();
@@ -164,6 +165,7 @@ int main(int argc, char** argv) {
     else if (a == "--no-endstops") no_endstops = true;
     else if (a == "--lcd") lcd_file = value();
     else if (a == "--eeprom") eeprom_file = value();
+    else if (a == "--save-eeprom") save_eeprom_file = value();
     else if (a == "--keys") {
       std::string keys;
       double at = 0;
@@ -355,6 +357,15 @@ int main(int argc, char** argv) {
     } else {
       std::ofstream out(report);
       sim::write_report(out, machine, end, pty_stats, plant.get(), wall_seconds, print_watch.get());
+    }
+    if (!save_eeprom_file.empty()) {
+      avr_eeprom_desc_t d{nullptr, 0, uint32_t(machine.avr()->e2end + 1)};
+      avr_ioctl(machine.avr(), AVR_IOCTL_EEPROM_GET, &d);
+      std::ofstream out(save_eeprom_file, std::ios::binary);
+      if (!d.ee || !out.write(reinterpret_cast<const char*>(d.ee), long(d.size))) {
+        std::cerr << "avrmotion-sim: cannot write the EEPROM to " << save_eeprom_file << "\n";
+        return 2;
+      }
     }
     const std::string title = pty ? "pty" : input == "-" ? "" : input;
     if (!plot.empty()) sim::write_run_plot(plot, machine, sim::PlotLabel{title, end, plant.get()});

@@ -15,7 +15,8 @@
 //                        `axes` in `dirs` (forward bits) runs toward
 //     watch_latches(axes, dirs)  the same switches' edge latches (those on
 //                        INT0/INT1: their INTFn flags, cleared now)
-//     closed(pins, latches, inverted)  whether a switch of those is closed
+//     closed(watched, latches, inverted)  whether a switch of the pins
+//                        `watched` (watch()'s) or the `latches` is closed
 //                        now, or has closed since (a latched edge: bounce
 //                        cannot hide it); `inverted` (a pin mask, 0 by
 //                        default) the switches whose pins read the other

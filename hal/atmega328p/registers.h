@@ -18,20 +18,7 @@ constexpr uint8_t pin_io_address(char port) {
 }  // namespace hal
 #endif
 
-#define HAL_UDR UDR0
-#define HAL_UCSRA UCSR0A
-#define HAL_UCSRB UCSR0B
-#define HAL_UCSRC UCSR0C
-#define HAL_UBRRH UBRR0H
-#define HAL_UBRRL UBRR0L
-#define HAL_U2X U2X0
-#define HAL_RXEN RXEN0
-#define HAL_TXEN TXEN0
-#define HAL_RXCIE RXCIE0
-#define HAL_UDRIE UDRIE0
-#define HAL_DOR DOR0
-#define HAL_FE FE0
-#define HAL_UCSRC_8N1 (_BV(UCSZ01) | _BV(UCSZ00))
+#include "../avr/usart0_names.h"
 #define HAL_UART_RX_VECT USART_RX_vect
 #define HAL_UART_UDRE_VECT USART_UDRE_vect
 

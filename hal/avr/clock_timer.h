@@ -50,24 +50,20 @@ struct ClockTimer {
   static constexpr uint32_t tick_hz = F_CPU / prescaler;
   static constexpr uint8_t cs = prescaler == 8 ? 0x02 : 0x03;  // CS02:0
 
+#if defined(__AVR_ATmega328P__) || defined(__AVR_ATmega1284P__)
 #if defined(__AVR_ATmega328P__)
+  static void start_shared_pwm8() { pwm8_detail::start<0, prescaler>(); }
+#else
+  static_assert(!shares_pwm8, "no 8-bit PWM HAL on the ATmega1284P: the time base owns Timer0 there");
+  static void start_shared_pwm8() {}
+#endif
   static void init() {
     if (shares_pwm8) {
-      pwm8_detail::start<0, prescaler>();
+      start_shared_pwm8();
     } else {
       TCCR0A = 0;  // normal mode, OC0A/OC0B disconnected
       TCCR0B = cs;
     }
-    TIFR0 = _BV(TOV0);  // write one to clear
-    TIMSK0 |= _BV(TOIE0);
-  }
-  static uint8_t count() { return TCNT0; }
-  static bool overflow_pending() { return (TIFR0 & _BV(TOV0)) != 0; }
-#elif defined(__AVR_ATmega1284P__)
-  static_assert(!shares_pwm8, "no 8-bit PWM HAL on the ATmega1284P: the time base owns Timer0 there");
-  static void init() {
-    TCCR0A = 0;  // normal mode, OC0A/OC0B disconnected
-    TCCR0B = cs;
     TIFR0 = _BV(TOV0);  // write one to clear
     TIMSK0 |= _BV(TOIE0);
   }
