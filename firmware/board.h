@@ -67,8 +67,8 @@ constexpr bool kSettings = false;
 // With settings: the pin polarities among them, grbl's $3 (direction
 // invert mask: each segment's direction lines flipped for its axes) and,
 // with endstops, $5 (the switches read inverted: normally-closed ones). The
-// step interrupt reads both from RAM (3 cycles a step event that watches a
-// switch, 4 a segment).
+// step interrupt reads both from RAM: an LDS and an EOR, 3 cycles, on a
+// step event that watches a switch and on a segment's load.
 constexpr bool kPinPolarities = false;
 // The lathe program's operator panel (firmware/apps/lathe/operator.h) in
 // place of its UART front end; with kApproximateRatios, a thread whose ratio

@@ -25,7 +25,7 @@
 # fails when a line is not acknowledged or, for the default file, the
 # report's X and Y are not that target.
 # With BOARD=m1284 (run 2026-12-02, the same cncjs): the banner in grbl's
-# style from the stored `$200=0`; `$$` answers the 35 settings, which
+# style from the stored `$200=0`; `$$` answers the 43 settings, which
 # cncjs annotates ($3, $5, $100.. with its own names); 204 of 204 lines
 # acknowledged, no error, the report ends on X 1.234 Y 5.678 mm.
 set -euo pipefail

@@ -7,12 +7,13 @@
 // tests/host/test_settings.cpp.
 //
 // Contract
-//   Layout<Axes, SwitchMask, Heater, Polarities> lists the settings of a
-//   board with `Axes` axes, endstops on the axes of `SwitchMask` (bit i:
-//   axis i), a heater or not and the pin polarities or not (false by
-//   default), in grbl's numeric order (Kind's order):
-//     $3         direction invert mask, 0 .. 2^Axes - 1 (with Polarities)
-//     $5         limit pins invert, 0/1          (with Polarities and endstops)
+//   Layout<Axes, SwitchMask, Parts> lists the settings of a board with
+//   `Axes` axes, endstops on the axes of `SwitchMask` (bit i: axis i) and
+//   the optional parts of `Parts` (kHeaterGains, kPinPolarities,
+//   kPathAccels, kRetraction; or-ed), in grbl's numeric order (Kind's
+//   order):
+//     $3         direction invert mask, 0 .. 2^Axes - 1 (kPinPolarities)
+//     $5         limit pins invert, 0/1          (kPinPolarities, endstops)
 //     $11        junction deviation, mm            0.001 .. 10
 //     $20        soft limits, 0/1                  (with endstops)
 //     $21        hard limits, 1, read-only         (with endstops)
@@ -23,10 +24,15 @@
 //     $120+a     acceleration, mm/s^2              1 .. 1000000
 //     $130+a     max travel, mm (axis a's switch)  1 .. 100000
 //     $200       the protocol style, 0 grbl, 1 Marlin
+//     $210..212  M204's path accelerations P, T, R, mm/s^2, 0 .. 1000000
+//                (0: none beyond the axes' own)       (kPathAccels)
+//     $220..224  M207's length, feed, hop and M208's extra, feed: mm 0 .. 100,
+//                mm/min 0.001 .. 100000               (kRetraction)
 //     $240+a     homing locate feed, mm/min        1 .. 1000000
 //     $250+a     homing seek feed, mm/min          1 .. 1000000
 //     $270+a     homing pull-off, mm               0 .. 1000
 //     $300..302  the heater's PID gains P, I, D    0 .. 1000, 0 .. 1000, 0 .. 10000
+//                                                   (kHeaterGains)
 //   (grbl has one $24/$25/$27 for every axis; the boards home Z slower than
 //   X and Y, so here each switch's axis has its own, grbl's number times ten
 //   plus the axis.) Every value is a uint32_t: thousandths of its unit for
@@ -73,13 +79,14 @@ namespace am {
 namespace settings {
 
 enum class Kind : uint8_t {
-  dir_invert, limit_invert, junction, soft_limits, hard_limits, homing, homing_dir, steps, rate, accel, travel, protocol, locate, seek,
-  pull_off, gain_p, gain_i, gain_d, end
+  dir_invert, limit_invert, junction, soft_limits, hard_limits, homing, homing_dir, steps, rate, accel, travel, protocol,
+  path_accel, retract_length, retract_feed, retract_hop, recover_extra, recover_feed, locate, seek, pull_off, gain_p,
+  gain_i, gain_d, end
 };
 
 struct Entry {
   Kind kind;
-  uint8_t axis;  // for the per-axis kinds; 0 otherwise
+  uint8_t axis;  // for the per-axis kinds (M204's: its slot P, T, R); 0 otherwise
 };
 
 // The tables below stay in flash on the AVR: the firmware defines
@@ -107,9 +114,10 @@ struct KindRows {
 // one copy in the image, defined in the header.
 template <bool B>
 const uint8_t KindRows<B>::row[uint8_t(Kind::end)][3] AM_SETTINGS_FLASH = {
-    {3, 0, 0x42},   {5, 0, 0x40},   {11, 0, 0x14},  {20, 0, 0x40},  {21, 0, 0xCF},  {22, 0, 0x40},  {23, 0, 0xCF}, {100, 0, 0x27},
-    {110, 0, 0x29}, {120, 0, 0x29}, {130, 0, 0x28}, {200, 0, 0x40}, {240, 0, 0x29}, {250, 0, 0x29},
-    {14, 1, 0x06},  {44, 1, 0x06},  {45, 1, 0x06},  {46, 1, 0x07}};
+    {3, 0, 0x42},   {5, 0, 0x40},   {11, 0, 0x14},  {20, 0, 0x40},  {21, 0, 0xCF},  {22, 0, 0x40},
+    {23, 0, 0xCF},  {100, 0, 0x27}, {110, 0, 0x29}, {120, 0, 0x29}, {130, 0, 0x28}, {200, 0, 0x40},
+    {210, 0, 0x09}, {220, 0, 0x05}, {221, 0, 0x18}, {222, 0, 0x05}, {223, 0, 0x05}, {224, 0, 0x18},
+    {240, 0, 0x29}, {250, 0, 0x29}, {14, 1, 0x06},  {44, 1, 0x06},  {45, 1, 0x06},  {46, 1, 0x07}};
 using KindTable = KindRows<>;
 inline uint8_t traits(Kind k) { return AM_SETTINGS_BYTE(&KindTable::row[uint8_t(k)][2]); }
 
@@ -219,19 +227,25 @@ enum class Error : uint8_t { none, unknown, read_only, bad_number, out_of_range,
 
 constexpr uint8_t bit_count(uint8_t m) { return m ? uint8_t((m & 1) + bit_count(uint8_t(m >> 1))) : 0; }
 
-template <uint8_t Axes, uint8_t SwitchMask, bool Heater, bool Polarities = false>
+// The optional parts of a layout (Layout's Parts, or-ed).
+constexpr uint8_t kHeaterGains = 1, kPinPolarities = 2, kPathAccels = 4, kRetraction = 8;
+
+template <uint8_t Axes, uint8_t SwitchMask, uint8_t Parts>
 struct Layout {
   static constexpr uint8_t kSwitches = bit_count(SwitchMask);
+  static constexpr bool has(uint8_t part) { return (Parts & part) != 0; }
 
   static constexpr uint8_t multiplicity(Kind k) {
-    return k == Kind::dir_invert                                                       ? (Polarities ? 1 : 0)
-           : k == Kind::limit_invert                                                   ? (Polarities && kSwitches ? 1 : 0)
-           : k == Kind::junction || k == Kind::protocol                                ? 1
-           : k <= Kind::homing_dir                                                     ? (kSwitches ? 1 : 0)
-           : k == Kind::steps || k == Kind::rate || k == Kind::accel                   ? Axes
+    return k == Kind::dir_invert                                         ? (has(kPinPolarities) ? 1 : 0)
+           : k == Kind::limit_invert                                     ? (has(kPinPolarities) && kSwitches ? 1 : 0)
+           : k == Kind::junction || k == Kind::protocol                  ? 1
+           : k <= Kind::homing_dir                                       ? (kSwitches ? 1 : 0)
+           : k == Kind::steps || k == Kind::rate || k == Kind::accel     ? Axes
+           : k == Kind::path_accel                                       ? (has(kPathAccels) ? 3 : 0)
+           : k >= Kind::retract_length && k <= Kind::recover_feed        ? (has(kRetraction) ? 1 : 0)
            : k == Kind::travel || k == Kind::locate || k == Kind::seek || k == Kind::pull_off ? kSwitches
-           : k < Kind::end                                                             ? (Heater ? 1 : 0)
-                                                                                       : 0;
+           : k < Kind::end                                               ? (has(kHeaterGains) ? 1 : 0)
+                                                                         : 0;
   }
   static constexpr uint8_t count(uint8_t k = 0) {
     return k == uint8_t(Kind::end) ? 0 : uint8_t(multiplicity(Kind(k)) + count(uint8_t(k + 1)));
@@ -245,7 +259,7 @@ struct Layout {
                                  : nth_switch(j, uint8_t(a + 1));
   }
   static constexpr uint8_t axis_of(Kind k, uint8_t j) {
-    return k == Kind::steps || k == Kind::rate || k == Kind::accel ? j
+    return k == Kind::steps || k == Kind::rate || k == Kind::accel || k == Kind::path_accel ? j
            : k == Kind::travel || k == Kind::locate || k == Kind::seek || k == Kind::pull_off ? nth_switch(j)
                                                                                                : 0;
   }
@@ -297,8 +311,8 @@ struct Layout {
       const Entry e = at(i);
       const Kind k = e.kind;
       const uint32_t v = b.value[i];
-      if (!in_range(k, v) || (Polarities && k == Kind::dir_invert && v >> Axes)) return Error::out_of_range;
-      if (k < Kind::rate || k == Kind::protocol || k >= Kind::gain_p) continue;
+      if (!in_range(k, v) || (has(kPinPolarities) && k == Kind::dir_invert && v >> Axes)) return Error::out_of_range;
+      if (k < Kind::rate || (k >= Kind::protocol && k < Kind::locate) || k >= Kind::gain_p) continue;
       constexpr uint8_t steps = first(Kind::steps);
       const uint32_t spm = b.value[steps + e.axis];
       uint32_t lo = 1, hi = limits.max_rate[e.axis], div = kPerLength;  // accel's scale is a length's
@@ -352,9 +366,9 @@ struct Layout {
   }
 };
 
-template <uint8_t Axes, uint8_t SwitchMask, bool Heater, bool Polarities>
+template <uint8_t Axes, uint8_t SwitchMask, uint8_t Parts>
 template <uint8_t... I>
-const uint8_t Layout<Axes, SwitchMask, Heater, Polarities>::Rows<I...>::row[sizeof...(I) ? sizeof...(I) : 1][2] AM_SETTINGS_FLASH = {
+const uint8_t Layout<Axes, SwitchMask, Parts>::Rows<I...>::row[sizeof...(I) ? sizeof...(I) : 1][2] AM_SETTINGS_FLASH = {
     {uint8_t(entry(I).kind), entry(I).axis}...};
 
 // `$<number>=<value>` into buf (at least 20 bytes): the value in its

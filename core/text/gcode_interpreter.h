@@ -113,16 +113,6 @@
 
 namespace am {
 
-// The firmware retraction's settings and state (gcode_retraction.h),
-// lengths in 1/10000 mm, feeds in 1/10000 mm/min; Marlin's defaults.
-struct GcodeRetraction {
-  int32_t length = 30000;          // M207 S: 3 mm (Marlin's RETRACT_LENGTH)
-  int32_t feed = 27000000;         // M207 F: 2700 mm/min (45 mm/s)
-  int32_t hop = 0;                 // M207 Z: the nozzle's lift
-  int32_t extra = 0;               // M208 S: pushed back beyond the length
-  int32_t recover_feed = 4800000;  // M208 F: 480 mm/min (8 mm/s)
-  bool retracted = false;
-};
 template <bool Retract>
 struct GcodeRetractionSlot {
   GcodeRetraction value;
@@ -210,9 +200,11 @@ class GcodeInterpreter : private GcodeRetractionSlot<Retract> {  // empty withou
   // G4 as Marlin reads it from now on, or as NGC (MarlinDwell kDwellChosen).
   static void set_marlin_dwell(bool marlin) { marlin_dwell_ = marlin; }
 
-  // The firmware retraction's settings and state (Retract only).
+  // The firmware retraction's settings and state (Marlin's defaults
+  // without Retract); new settings keep the state (nothing without it).
   using Retraction = GcodeRetraction;
-  const Retraction& retraction() const { return this->value; }
+  Retraction retraction() const { return retraction_of(*this); }
+  void set_retraction(const Retraction& r) { set_retraction_of(*this, r); }
 
  private:
   static bool marlin_dwell_;
@@ -234,6 +226,13 @@ class GcodeInterpreter : private GcodeRetractionSlot<Retract> {  // empty withou
   GcodeError retract_settings(const GcodeBlock&, bool, RetractionSlot<false>&) { return GcodeError::unsupported_code; }
   static void clear_retracted(RetractionSlot<true>& slot) { slot.value.retracted = false; }
   static void clear_retracted(RetractionSlot<false>&) {}
+  static Retraction retraction_of(const RetractionSlot<true>& slot) { return slot.value; }
+  static Retraction retraction_of(const RetractionSlot<false>&) { return Retraction(); }
+  static void set_retraction_of(RetractionSlot<true>& slot, Retraction r) {
+    r.retracted = slot.value.retracted;
+    slot.value = r;
+  }
+  static void set_retraction_of(RetractionSlot<false>&, const Retraction&) {}
   // M221's flow on E's target `steps` from `st` (its offset into `offset`);
   // false beyond the position range.
   [[gnu::noinline]] bool flow(const GcodeAxisState& st, int32_t& steps, int32_t& offset) const {

@@ -1,7 +1,8 @@
 // What the G-code interpreter (gcode_interpreter.h) keeps and hands out:
-// its axes' table entries, the modal state, the per-axis positions and the
-// action one accepted line asks of the machine, with the heater codes'
-// command and the plane tables the arc words use. The meaning of every
+// its axes' table entries, the modal state, the per-axis positions, the
+// firmware retraction's settings and the action one accepted line asks of
+// the machine, with the heater codes' command and the plane tables the arc
+// words use. The meaning of every
 // field is in gcode_interpreter.h's contract.
 #pragma once
 #include <stdint.h>
@@ -21,6 +22,17 @@ constexpr uint8_t kModesShield = 63;   // Motor Shield steppers: all six
 constexpr uint8_t kModesUnipolar = 7;  // ULN2003: wave, two-phase, half
 
 constexpr uint8_t kNoAxis = 0xFF;
+
+// The firmware retraction's settings and state (gcode_retraction.h),
+// lengths in 1/10000 mm, feeds in 1/10000 mm/min; Marlin's defaults.
+struct GcodeRetraction {
+  int32_t length = 30000;          // M207 S: 3 mm (Marlin's RETRACT_LENGTH)
+  int32_t feed = 27000000;         // M207 F: 2700 mm/min (45 mm/s)
+  int32_t hop = 0;                 // M207 Z: the nozzle's lift
+  int32_t extra = 0;               // M208 S: pushed back beyond the length
+  int32_t recover_feed = 4800000;  // M208 F: 480 mm/min (8 mm/s)
+  bool retracted = false;
+};
 
 struct GcodeAxis {
   char letter;           // 'X', 'Y', 'Z', 'E', 'U', 'A', 'B' or 'C'

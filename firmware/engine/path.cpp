@@ -223,6 +223,7 @@ void set_axis_limit(uint8_t axis, bool accel, float value) {
 }
 
 void set_path_accel(PathAccel which, float mm_per_s2) { path_accel[uint8_t(which)] = mm_per_s2; }
+float path_accel_cap(PathAccel which) { return path_accel[uint8_t(which)]; }
 
 float held_feed() { return plan().newest_nominal() * 60; }
 

@@ -71,6 +71,7 @@ void set_junction_um(uint32_t um);
 enum class PathAccel : uint8_t { print, travel, retract };
 void set_axis_limit(uint8_t axis, bool accel, float value);
 void set_path_accel(PathAccel which, float mm_per_s2);
+float path_accel_cap(PathAccel which);  // infinite: none set
 // Whether add() would queue a block now (not full).
 bool room();
 // The feed the last queued block runs at, mm/min: its F as the axes' limits

@@ -14,7 +14,6 @@
 #include "../board.h"
 #include "../engine/clock.h"
 #include "../engine/limits.h"
-#include "settings.h"
 
 namespace heater {
 namespace {
@@ -133,7 +132,6 @@ void init() {
 }
 
 void store_gains() {
-  if (board::kSettings) return settings::store_gains();
   const Stored stored{kStoredTag, gains(), checksum(gains())};
   hal::eeprom::update(kStoredAt, &stored, sizeof stored);
 }

@@ -55,9 +55,9 @@ bool set_gains(const am::PidGains& g);
 // M500: the gains into the EEPROM (a tag and a checksum with them); init()
 // takes them back on every reset when the tag and the checksum hold and
 // set_gains() accepts them, Marlin's defaults otherwise. On a board with
-// settings (board::kSettings) the gains are its $300..302: init() takes
-// Marlin's defaults, settings::boot() puts the stored ones in force, and
-// store_gains() stores them in the settings' block (settings::store_gains()).
+// settings (board::kSettings) the gains are its $300..302 instead: init()
+// takes Marlin's defaults, settings::boot() puts the stored ones in force,
+// the settings' M500 stores those in force (store_gains() is not used).
 void store_gains();
 // Starts an autotune (target, cycles; the rest Marlin's defaults); false
 // once a fault has latched or in an alarm. While it is on, the PID rests with its gains

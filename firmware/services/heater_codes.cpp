@@ -135,9 +135,6 @@ bool run(const am::GcodeHeaterCommand& c) {
       if (c.gains_given & 4) g.kd_milli = c.gains[2];
       // The interpreter checked the ranges set_gains() takes.
       set_gains(g);
-      // Where the gains are settings ($300..302), stored at once as every
-      // setting there is (docs/settings.md).
-      if (board::kSettings) store_gains();
       write_gains(PSTR("echo: "), PSTR(""), gains());
       ok();
       return true;

@@ -3,6 +3,7 @@
 #include "settings.h"
 
 #include <avr/pgmspace.h>
+#include <math.h>
 #include <string.h>
 
 #define AM_SETTINGS_FLASH PROGMEM
@@ -24,7 +25,10 @@ namespace {
 using namespace am::settings;
 constexpr uint8_t kAxes = board::Axes::count;
 using Endstops = board::Endstops;
-using Table = Layout<kAxes, Endstops::axes, board::kHeater, board::kPinPolarities>;
+constexpr uint8_t kParts =
+    uint8_t((board::kHeater ? kHeaterGains : 0) | (board::kPinPolarities ? kPinPolarities : 0) |
+            (board::kPrinterCodes ? kPathAccels : 0) | (board::kFirmwareRetract ? kRetraction : 0));
+using Table = Layout<kAxes, Endstops::axes, kParts>;
 using Values = Table::Values;
 
 // The block's version: a new layout or meaning of a value needs a new one
@@ -85,8 +89,15 @@ uint32_t homing_default(Entry e, uint32_t spm) {
                                     : 1;  // soft limits, hard limits, homing: on
 }
 
+// M207's and M208's settings in the retraction kinds' order, in the
+// interpreter's units (1/10000 mm; the settings' are thousandths).
+using Retraction = am::GcodeRetraction;
+int32_t Retraction::* const kRetractionFields[5] = {&Retraction::length, &Retraction::feed, &Retraction::hop,
+                                                    &Retraction::extra, &Retraction::recover_feed};
+uint32_t retraction_value(const Retraction& r, uint8_t k) { return uint32_t((r.*kRetractionFields[k] + 5) / 10); }
+
 // The board header's figures, in the settings' units. (The kinds of the
-// switches and the heater only where the board has them.)
+// switches, the heater and the printer's only where the board has them.)
 void defaults(Values& b) {
   for (uint8_t i = 0; i < Table::kCount; ++i) {
     const Entry e = Table::at(i);
@@ -104,8 +115,12 @@ void defaults(Values& b) {
       v = accel_mm(board::kDefaultAccel, spm);
     else if (e.kind == Kind::protocol)  // the style in force: the board's at boot, kept by $RST=$ and M502
       v = board::kProtocolSwitch ? uint32_t(reply::marlin()) : uint32_t(board::kProtocol);
-    else if (board::kHeater && e.kind >= Kind::gain_p)
+    else if (Table::has(kHeaterGains) && e.kind >= Kind::gain_p)
       v = e.kind == Kind::gain_p ? 22200 : e.kind == Kind::gain_i ? 1080 : 114000;  // Marlin's DEFAULT_Kp/Ki/Kd
+    else if (Table::has(kPathAccels) && e.kind == Kind::path_accel)
+      v = 0;  // no cap beyond the axes' own
+    else if (Table::has(kRetraction) && e.kind >= Kind::retract_length && e.kind <= Kind::recover_feed)
+      v = retraction_value(Retraction(), uint8_t(uint8_t(e.kind) - uint8_t(Kind::retract_length)));  // Marlin's
     else
       v = Endstops::count ? homing_default(e, spm) : 1;
     b.value[i] = v;
@@ -124,22 +139,44 @@ void store(Values& b) {
   hal::eeprom::update(kStoredAt, &b, Values::kSummed + 2);
 }
 
-// The heater's gains in force (an M301's, an autotune's) in place of the
+// A machine code's figure held within its setting's range: M207's and
+// M208's feeds are above 0 in 1/10000 mm/min, and one below 0.0005 mm/min
+// would round to none in thousandths.
+uint32_t within(Kind k, uint32_t v) {
+  const uint32_t lo = range_min(k), hi = range_max(k);
+  return v < lo ? lo : v > hi ? hi : v;
+}
+
+// The machine codes' settings in force (M301's or an autotune's gains,
+// M204's accelerations, M207's and M208's retraction) in place of the
 // block's: what `$$` shows and a change stores.
-void gains_in_force(Values& b) {
-  if (!board::kHeater) return;
-  constexpr uint8_t p = Table::first(Kind::gain_p);
-  const am::PidGains& g = heater::gains();
-  b.value[p] = g.kp_milli;
-  b.value[p + 1] = g.ki_milli;
-  b.value[p + 2] = g.kd_milli;
+void machine_codes_in_force(Values& b) {
+  if (Table::has(kHeaterGains)) {
+    constexpr uint8_t p = Table::first(Kind::gain_p);
+    const am::PidGains& g = heater::gains();
+    b.value[p] = g.kp_milli;
+    b.value[p + 1] = g.ki_milli;
+    b.value[p + 2] = g.kd_milli;
+  }
+  if (Table::has(kPathAccels)) {
+    constexpr uint8_t p = Table::first(Kind::path_accel);
+    for (uint8_t k = 0; k < 3; ++k) {
+      const float a = path::path_accel_cap(path::PathAccel(k));  // mm/s^2, infinite: no cap
+      b.value[p + k] = a > 1e6f ? 0 : within(Kind::path_accel, uint32_t(a * 1000 + 0.5f));
+    }
+  }
+  if (Table::has(kRetraction)) {
+    constexpr uint8_t p = Table::first(Kind::retract_length);
+    const Retraction r = gcode::retraction();
+    for (uint8_t k = 0; k < 5; ++k) b.value[p + k] = within(Kind(uint8_t(Kind::retract_length) + k), retraction_value(r, k));
+  }
 }
 
 // The block in force: the EEPROM's (the defaults if it is bad), with the
-// gains the heater runs on.
+// machine codes' settings as the machine runs on them.
 void read_in_force(Values& b) {
   read(b);
-  gains_in_force(b);
+  machine_codes_in_force(b);
 }
 
 // Axis a's value of a per-axis kind, switch k's of a per-switch kind, a
@@ -164,8 +201,19 @@ void apply(const Values& b) {
     engine::set_polarities(uint8_t(value<Kind::dir_invert>(b)),
                            Endstops::count && value<Kind::limit_invert>(b) ? Endstops::pins : 0);
   // The block's gains are within HeaterPid's ranges (the table's: validate()).
-  if (board::kHeater)
+  if (Table::has(kHeaterGains))
     heater::set_gains(am::PidGains{value<Kind::gain_p>(b), value<Kind::gain_i>(b), value<Kind::gain_d>(b)});
+  if (Table::has(kPathAccels)) {
+    for (uint8_t k = 0; k < 3; ++k) {
+      const uint32_t a = value<Kind::path_accel>(b, k);
+      path::set_path_accel(path::PathAccel(k), a ? float(a) * 1e-3f : INFINITY);
+    }
+  }
+  if (Table::has(kRetraction)) {
+    Retraction r;
+    for (uint8_t k = 0; k < 5; ++k) r.*kRetractionFields[k] = int32_t(value<Kind::retract_length>(b, k) * 10);
+    gcode::set_retraction(r);  // its state (retracted or not) kept
+  }
   if (!Endstops::count) return;
   limits::soft_limits = value<Kind::soft_limits>(b) != 0;
   limits::homing_enabled = value<Kind::homing>(b) != 0;
@@ -321,12 +369,6 @@ namespace {
 }
 
 }  // namespace
-
-void store_gains() {
-  Values b;
-  read_in_force(b);
-  store(b);
-}
 
 void marlin(uint16_t code, char* words) {
   if (code == 501) {  // the block as at boot: its defaults and its line if it is bad

@@ -13,10 +13,12 @@
 //   main() prints after the banner (grbl `[MSG:...]`, Marlin `echo:...`);
 //   nullptr otherwise. Nothing is written: the EEPROM keeps what it has
 //   until a setting is stored.
-//   On a board with a heater the PID's gains are $300..302: apply puts
-//   them in force (heater::set_gains()), and what the heater runs on (an
-//   M301's, an autotune's) is what `$$`, M503, M500 and every change
-//   store or show. store_gains() stores the block with the gains in force.
+//   The machine codes' settings where the board has them: the heater's PID
+//   gains ($300..302: M301, an autotune), the printer codes' path
+//   accelerations ($210..212: M204), the firmware retraction's ($220..224:
+//   M207, M208). boot() and every apply put the stored ones in force; the
+//   codes change them in RAM, as Marlin's do, and what is in force is what
+//   `$$` and M503 show and what M500 and every other change store.
 //   list() prints grbl's `$N=value` lines of the settings in force;
 //   list(true) M503's lines (Marlin's codes where Marlin has one).
 //   marlin(code, words) runs Marlin's settings code M<code> with the rest
@@ -44,7 +46,6 @@
 namespace settings {
 
 const char* boot();
-void store_gains();
 void list(bool marlin_lines = false);
 void change(const char* text);
 void marlin(uint16_t code, char* words);

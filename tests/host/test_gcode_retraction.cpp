@@ -2,7 +2,9 @@
 // G10/G11 against a model of the rule (E by -length, then +length + extra,
 // Z by +-hop, in the axes' offsets, the program positions unchanged) over a
 // sweep of settings and interleaved moves; M207/M208 words, units and
-// ranges; refusals that change nothing; the codes absent without Retract.
+// ranges; refusals that change nothing; settings put in from outside (the
+// m1284's settings block) that keep the state; the codes absent without
+// Retract.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -170,6 +172,30 @@ TEST(GcodeRetraction, AbsentWithoutRetract) {
   am::GcodeBlock b;
   EXPECT_EQ(am::parse_gcode<true>("G10", b), GcodeError::unsupported_code);
   EXPECT_EQ((am::parse_gcode<true, true>("G10", b)), GcodeError::none);
+}
+
+// Settings put in from outside (the settings block's, at boot or after
+// M502) keep the state: a G11 after them pushes the new length and extra,
+// and the Without interpreter answers Marlin's defaults and takes nothing.
+TEST(GcodeRetraction, SettingsFromOutsideKeepTheState) {
+  Grbl g(kM32);
+  Action a;
+  ASSERT_EQ(run(g, "G10", a), GcodeError::none);  // E -3 mm
+  am::GcodeRetraction r;
+  r.length = 45000;
+  r.extra = 2000;
+  r.recover_feed = 6000000;
+  r.retracted = false;  // not what the interpreter's state is: kept as it is
+  g.set_retraction(r);
+  EXPECT_TRUE(g.retraction().retracted);
+  EXPECT_EQ(g.retraction().length, 45000);
+  ASSERT_EQ(run(g, "G11", a), GcodeError::none);
+  EXPECT_EQ(a.target[3], -3000 + 4500 + 200);  // the new length and extra
+  EXPECT_EQ(a.feed, 6000000);
+  Without w(kM32);
+  w.set_retraction(r);
+  EXPECT_EQ(w.retraction().length, am::GcodeRetraction().length);
+  EXPECT_EQ(w.run("G10", a), GcodeError::unsupported_code);
 }
 
 }  // namespace

@@ -17,11 +17,11 @@ using namespace am::settings;
 
 // The three shapes the boards have: m32-direct (4 axes, switches on X Y Z),
 // m32-cnc (4 axes, no switches), the m32 printer (switches and a heater).
-using Direct = Layout<4, 0x07, false>;
-using Cnc = Layout<4, 0, false>;
-using Printer = Layout<4, 0x07, true>;
-// The m1284: the printer's with the pin polarities.
-using Whole = Layout<4, 0x07, true, true>;
+using Direct = Layout<4, 0x07, 0>;
+using Cnc = Layout<4, 0, 0>;
+using Printer = Layout<4, 0x07, kHeaterGains>;
+// The m1284: the printer's with every part.
+using Whole = Layout<4, 0x07, kHeaterGains | kPinPolarities | kPathAccels | kRetraction>;
 
 std::vector<uint16_t> numbers_of(uint8_t count, Entry (*at)(uint8_t)) {
   std::vector<uint16_t> n;
@@ -39,7 +39,7 @@ TEST(Settings, TheLayoutsListGrblsNumbersInOrder) {
   for (uint16_t n : {300, 301, 302}) printer.push_back(n);
   EXPECT_EQ(numbers_of(Printer::count(), Printer::at), printer);
   // One switch on axis 2 only: its travel and homing entries name axis 2.
-  using OneSwitch = Layout<3, 0x04, false>;
+  using OneSwitch = Layout<3, 0x04, 0>;
   const std::vector<uint16_t> one = {11, 20, 21, 22, 23, 100, 101, 102, 110, 111, 112,
                                      120, 121, 122, 132, 200, 242, 252, 272};
   EXPECT_EQ(numbers_of(OneSwitch::count(), OneSwitch::at), one);
@@ -50,12 +50,19 @@ TEST(Settings, TheLayoutsListGrblsNumbersInOrder) {
   EXPECT_EQ(unsigned(Cnc::Values::kSummed), 4u + 4u * 14);  // and the sum: 62 bytes of EEPROM
 }
 
-TEST(Settings, ThePolaritiesComeFirstWhereTheBoardHasThem) {
+TEST(Settings, TheOptionalPartsTakeTheirPlacesInGrblsOrder) {
   std::vector<uint16_t> whole = {3, 5};
-  for (uint16_t n : numbers_of(Printer::count(), Printer::at)) whole.push_back(n);
+  for (uint16_t n : numbers_of(Printer::count(), Printer::at)) {
+    whole.push_back(n);
+    if (n == 200)
+      for (uint16_t m : {210, 211, 212, 220, 221, 222, 223, 224}) whole.push_back(m);
+  }
   EXPECT_EQ(numbers_of(Whole::count(), Whole::at), whole);
+  EXPECT_EQ(unsigned(Whole::count()), 43u);
+  // M204's three slots name their slot as the entry's axis.
+  for (uint8_t k = 0; k < 3; ++k) EXPECT_EQ(Whole::at(uint8_t(Whole::find(uint16_t(210 + k)))).axis, k);
   // No switches: the direction mask alone.
-  using NoSwitch = Layout<4, 0, false, true>;
+  using NoSwitch = Layout<4, 0, kPinPolarities>;
   std::vector<uint16_t> no_switch = {3};
   for (uint16_t n : numbers_of(Cnc::count(), Cnc::at)) no_switch.push_back(n);
   EXPECT_EQ(numbers_of(NoSwitch::count(), NoSwitch::at), no_switch);
@@ -86,6 +93,9 @@ typename L::Values defaults() {
       case Kind::gain_p: v = 22200; break;
       case Kind::gain_i: v = 1080; break;
       case Kind::gain_d: v = 114000; break;
+      case Kind::retract_length: v = 3000; break;
+      case Kind::retract_feed: v = 2700000; break;
+      case Kind::recover_feed: v = 480000; break;
       default: break;
     }
   }
@@ -166,43 +176,43 @@ std::string text(const char* fmt, double v) {
 TEST(Settings, EveryRangeEdgeOfEveryEntry) {
   const EngineLimits<4> wide{{0xFFFFFFFFu, 0xFFFFFFFFu, 0xFFFFFFFFu, 0xFFFFFFFFu}, 0xFFFFFFFFu};
   int edges = 0;
-  for (uint8_t i = 0; i < Printer::count(); ++i) {
-    const Entry e = Printer::at(i);
-    if (read_only(e.kind)) continue;
+  for (uint8_t i = 0; i < Whole::count(); ++i) {
+    const Entry e = Whole::at(i);
+    if (read_only(e.kind) || e.kind == Kind::dir_invert) continue;  // $3: its own test (masks below 100)
     const Range r = range(e.kind);
     const double unit = digits(e.kind) ? 1000.0 : 1.0;
     const char* fmt = digits(e.kind) ? "%.3f" : "%.0f";
     for (int high = 0; high < 2; ++high) {
-      auto b = defaults<Printer>();
+      auto b = defaults<Whole>();
       // Small figures need many steps per mm to be a step at all; large ones few.
-      for (uint8_t a = 0; a < 4; ++a) b.value[Printer::find(uint16_t(100 + a))] = high ? 1000 : 10000000;
-      for (uint8_t k = 0; k < Printer::count(); ++k) {
-        const Kind kk = Printer::at(k).kind;
+      for (uint8_t a = 0; a < 4; ++a) b.value[Whole::find(uint16_t(100 + a))] = high ? 1000 : 10000000;
+      for (uint8_t k = 0; k < Whole::count(); ++k) {
+        const Kind kk = Whole::at(k).kind;
         if (kk == Kind::seek || kk == Kind::locate) b.value[k] = 60000;   // 60 mm/min
         if (kk == Kind::pull_off) b.value[k] = 0;
       }
       if (e.kind == Kind::steps) {  // every derived figure fits both ends
-        for (uint8_t k = 0; k < Printer::count(); ++k) {
-          const Kind kk = Printer::at(k).kind;
+        for (uint8_t k = 0; k < Whole::count(); ++k) {
+          const Kind kk = Whole::at(k).kind;
           if (kk == Kind::rate || kk == Kind::seek || kk == Kind::locate) b.value[k] = 60000;  // 60 mm/min
           if (kk == Kind::accel) b.value[k] = 10000;
           if (kk == Kind::travel) b.value[k] = 1000000;
         }
       }
-      ASSERT_EQ(Printer::validate(b, wide), Error::none) << number(e);
+      ASSERT_EQ(Whole::validate(b, wide), Error::none) << number(e);
       const uint32_t edge = high ? r.max : r.min;
-      EXPECT_EQ(Printer::set(b, number(e), text(fmt, edge / unit).c_str(), wide), Error::none)
+      EXPECT_EQ(Whole::set(b, number(e), text(fmt, edge / unit).c_str(), wide), Error::none)
           << number(e) << "=" << text(fmt, edge / unit);
       EXPECT_EQ(b.value[i], edge) << number(e);
       const auto before = b;
       const double beyond = high ? (double(edge) + 1) / unit : (double(edge) - 1) / unit;
-      EXPECT_EQ(Printer::set(b, number(e), text(fmt, beyond).c_str(), wide), Error::out_of_range)
+      EXPECT_EQ(Whole::set(b, number(e), text(fmt, beyond).c_str(), wide), Error::out_of_range)
           << number(e) << "=" << text(fmt, beyond);
       EXPECT_EQ(std::memcmp(&b, &before, sizeof b), 0) << number(e);
       ++edges;
     }
   }
-  EXPECT_EQ(edges, 2 * (Printer::count() - 2));  // all but the read-only $21 and $23
+  EXPECT_EQ(edges, 2 * (Whole::count() - 3));  // all but the read-only $21 and $23, and $3
 }
 
 // $3 takes every mask of the four axes and nothing above; $5 is 0 or 1;

@@ -2,8 +2,8 @@
 // with an ATmega1284P in its socket, every part of the cnc program in one
 // image. What only this image has, on the real image: the pin polarities
 // ($3 over every mask, $5 with normally-closed switches: homing from both
-// sides and a hard limit), the heater's gains as settings ($300..302: M301,
-// a power cycle, M502), Marlin's style by default with the realtime bytes
+// sides and a hard limit), the machine codes' settings (M301, M204, M207,
+// M208: M500, a power cycle, M502), Marlin's style by default with the realtime bytes
 // left in the text of its lines, and grbl's after `$200=0` with them taken.
 // The other suites run their parts on the m32 images (test_realtime.cpp
 // runs this one too).
@@ -138,30 +138,64 @@ TEST(M1284, AHardLimitOnANormallyClosedSwitchStopsAtIt) {
   EXPECT_TRUE(ok(m, send(m, {"M999", "G1 X0 F1200"}) + 1));
 }
 
-// The heater's gains are the settings $300..302 here: M301 stores them at
-// once, a power cycle runs on them, M502 brings back Marlin's defaults. One
-// block in the EEPROM: nothing beyond it is written.
-TEST(M1284, TheHeatersGainsAreSettingsThroughAPowerCycle) {
-  std::vector<uint8_t> ee;
+// The machine codes' settings are in the block here: the heater's gains
+// ($300..302), M204's path accelerations ($210..212), M207's and M208's
+// retraction ($220..224). As in Marlin the codes change what is in force
+// (M503 shows it: it reads the heater, the planner and the interpreter) and
+// M500 stores it; a power cycle without M500 runs on what was stored, with
+// it on the new figures (M503 again, M301's report, a G10's steps); M502
+// brings back the defaults. One block in the EEPROM: nothing past it.
+TEST(M1284, M500StoresTheMachineCodesSettingsInForce) {
+  const std::vector<std::string> codes = {"M301 P30.5 I2.25 D100", "M204 P800 T1500 R400", "M207 S4.5 F1800 Z0.4",
+                                          "M208 S0.2 F600", "M503"};
+  const std::vector<std::pair<std::string, std::string>> changed = {
+      {"$300=", "30.500"},  {"$301=", "2.250"},    {"$302=", "100.000"}, {"$210=", "800.000"},
+      {"$211=", "1500.000"}, {"$212=", "400.000"}, {"$220=", "4.500"},   {"$221=", "1800.000"},
+      {"$222=", "0.400"},   {"$223=", "0.200"},    {"$224=", "600.000"}};
+  const std::vector<std::pair<std::string, std::string>> defaults = {
+      {"$300=", "22.200"}, {"$301=", "1.080"},    {"$302=", "114.000"}, {"$210=", "0.000"},
+      {"$211=", "0.000"},  {"$212=", "0.000"},    {"$220=", "3.000"},   {"$221=", "2700.000"},
+      {"$222=", "0.000"},  {"$223=", "0.000"},    {"$224=", "480.000"}};
+  const auto expect_listed = [](sim::Machine& m, const std::vector<std::pair<std::string, std::string>>& want,
+                                const char* when) {
+    for (const auto& w : want) EXPECT_EQ(last_starting(m, "echo:  " + w.first), "echo:  " + w.first + w.second) << when;
+  };
+  std::vector<uint8_t> unsaved, saved;
   {
     sim::Machine m(simtest::image(kImage));
-    const size_t first = send(m, {"M301 P30.5 I2.25 D100"});
-    ASSERT_TRUE(ok(m, first));
-    ee = eeprom_of(m);
+    const size_t first = send(m, codes);
+    for (size_t i = 0; i < codes.size(); ++i) EXPECT_TRUE(ok(m, first + i)) << codes[i];
+    expect_listed(m, changed, "in force before M500");
+    unsaved = eeprom_of(m);
+    ASSERT_TRUE(ok(m, send(m, {"M500"})));
+    saved = eeprom_of(m);
   }
   size_t written = 0;
-  for (size_t i = 0; i < ee.size(); ++i)
-    if (ee[i] != 0xFF) written = i + 1;
-  EXPECT_LE(written, 4u + 4u * 35 + 2);  // header, 35 values, sum (docs/settings.md)
+  for (size_t i = 0; i < saved.size(); ++i)
+    if (saved[i] != 0xFF) written = i + 1;
+  EXPECT_LE(written, 4u + 4u * 43 + 2);  // header, 43 values, sum (docs/settings.md)
+  {
+    sim::Machine m(simtest::image(kImage));
+    set_eeprom(m, unsaved);
+    send(m, {"M503"});
+    expect_listed(m, defaults, "after a power cycle without M500");
+  }
   sim::Machine m(simtest::image(kImage));
-  set_eeprom(m, ee);
-  send(m, {"M503", "M301"});
-  EXPECT_EQ(last_starting(m, "echo:  $300="), "echo:  $300=30.500");
-  EXPECT_EQ(last_starting(m, "echo:  $301="), "echo:  $301=2.250");
-  EXPECT_EQ(last_starting(m, "echo:  $302="), "echo:  $302=100.000");
+  set_eeprom(m, saved);
+  send(m, {"M503", "M301", "M83", "G10", "M400", "M114"});
+  expect_listed(m, changed, "after a power cycle with M500");
   EXPECT_NE(last_starting(m, "echo: p:30.50 i:2.25 d:100.00"), "");
-  send(m, {"M502", "M301"});
+  const std::string m114 = last_starting(m, "X:");
+  EXPECT_EQ(count_of(m114, 'E'), -4500) << m114;  // M207 S4.5 at 1000 steps/mm
+  EXPECT_EQ(count_of(m114, 'Z'), 400) << m114;    // Z0.4
+  send(m, {"G11", "M502", "M503", "M301"});
+  expect_listed(m, defaults, "after M502");
   EXPECT_NE(last_starting(m, "echo: p:22.20 i:1.08 d:114.00"), "");
+  // M204's greatest (its number in 1/10000 mm/s^2 in 32 bits) and a
+  // fraction, as they are in force.
+  send(m, {"M204 P214748 T0.25", "M503"});
+  EXPECT_EQ(last_starting(m, "echo:  $210="), "echo:  $210=214748.000");
+  EXPECT_EQ(last_starting(m, "echo:  $211="), "echo:  $211=0.250");
 }
 
 // Marlin's style (the default): `!`, `~` and `?` in a line are its text,

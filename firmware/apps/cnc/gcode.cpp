@@ -452,5 +452,7 @@ void set_feed_percent(uint16_t percent) {
 uint16_t feed_percent() { return feed_percent_; }
 void set_flow(uint16_t percent) { interpreter().set_flow(percent); }
 uint16_t flow() { return interpreter().flow(); }
+am::GcodeRetraction retraction() { return interpreter().retraction(); }
+void set_retraction(const am::GcodeRetraction& settings) { interpreter().set_retraction(settings); }
 
 }  // namespace gcode

@@ -17,6 +17,7 @@
 //   (the arc interpolator is not on the engine yet).
 #pragma once
 #include "../../../core/text/gcode_parser.h"
+#include "../../../core/text/gcode_state.h"
 
 namespace gcode {
 
@@ -42,6 +43,11 @@ void set_feed_percent(uint16_t percent);
 uint16_t feed_percent();
 void set_flow(uint16_t percent);
 uint16_t flow();
+// The firmware retraction's settings (board::kFirmwareRetract): M207's and
+// M208's, and the settings' (firmware/services/settings.h), which leave its
+// state (retracted or not) as it is.
+am::GcodeRetraction retraction();
+void set_retraction(const am::GcodeRetraction& settings);
 // Prints the refusal `e` (its text and grbl number): the direct controls
 // share the texts they have in common with G-code.
 void refuse(am::GcodeError e);
