@@ -1,6 +1,7 @@
 #include "machine.h"
 
 #include <avr_adc.h>
+#include <avr_eeprom.h>
 #include <avr_ioport.h>
 #include <avr_timer.h>
 #include <sim_avr.h>
@@ -323,6 +324,18 @@ const std::vector<PinEdge>& Machine::watch_pin(char port, uint8_t bit) {
 
 void Machine::set_input(char port, uint8_t bit, bool level) {
   avr_raise_irq(avr_io_getirq(avr_, AVR_IOCTL_IOPORT_GETIRQ(port), bit), level ? 1 : 0);
+}
+
+// (simavr's EEPROM ioctls answer -1 whether they worked or not.)
+std::vector<uint8_t> Machine::eeprom(uint32_t bytes) {
+  avr_eeprom_desc_t d{nullptr, 0, bytes ? bytes : uint32_t(avr_->e2end + 1)};
+  avr_ioctl(avr_, AVR_IOCTL_EEPROM_GET, &d);
+  return d.ee ? std::vector<uint8_t>(d.ee, d.ee + d.size) : std::vector<uint8_t>();
+}
+
+void Machine::set_eeprom(std::vector<uint8_t> bytes) {
+  avr_eeprom_desc_t d{bytes.data(), 0, uint32_t(bytes.size())};
+  avr_ioctl(avr_, AVR_IOCTL_EEPROM_SET, &d);
 }
 
 void Machine::hold_input(char port, uint8_t bit, bool level) {

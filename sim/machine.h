@@ -132,6 +132,11 @@ class Machine {
   // set_input() would read 0 afterwards). An endstop's pin is held open
   // from construction (sim/endstops.h drives it from a position).
   void hold_input(char port, uint8_t bit, bool level);
+  // The EEPROM: its first `bytes` bytes (all of it with 0; erased cells read
+  // 0xFF), and `bytes` written from address 0, as a programmer would (they
+  // live through every reset). Empty when simavr has no EEPROM to give.
+  std::vector<uint8_t> eeprom(uint32_t bytes = 0);
+  void set_eeprom(std::vector<uint8_t> bytes);
   // Puts `mv` millivolts on ADC input `channel` (0..7), as a sensor would.
   // The first call also sets AVCC, VCC and AREF to 5 V if nothing set them
   // (simavr otherwise converts against 3.3 V). simavr samples the input when

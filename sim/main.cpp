@@ -13,7 +13,6 @@
 #include <string>
 #include <vector>
 
-#include <avr_eeprom.h>
 #include <sim_avr.h>
 
 #include "dc_servo.h"
@@ -247,8 +246,7 @@ int main(int argc, char** argv) {
         std::cerr << "avrmotion-sim: cannot read the EEPROM bytes of " << eeprom_file << "\n";
         return 2;
       }
-      avr_eeprom_desc_t d{bytes.data(), 0, uint32_t(bytes.size())};
-      avr_ioctl(machine.avr(), AVR_IOCTL_EEPROM_SET, &d);  // (answers -1 whether it worked or not)
+      machine.set_eeprom(bytes);
     }
     std::unique_ptr<sim::VcdRecorder> trace;
     sim::RunEnd end;
@@ -359,10 +357,9 @@ int main(int argc, char** argv) {
       sim::write_report(out, machine, end, pty_stats, plant.get(), wall_seconds, print_watch.get());
     }
     if (!save_eeprom_file.empty()) {
-      avr_eeprom_desc_t d{nullptr, 0, uint32_t(machine.avr()->e2end + 1)};
-      avr_ioctl(machine.avr(), AVR_IOCTL_EEPROM_GET, &d);
+      const std::vector<uint8_t> bytes = machine.eeprom();
       std::ofstream out(save_eeprom_file, std::ios::binary);
-      if (!d.ee || !out.write(reinterpret_cast<const char*>(d.ee), long(d.size))) {
+      if (bytes.empty() || !out.write(reinterpret_cast<const char*>(bytes.data()), long(bytes.size()))) {
         std::cerr << "avrmotion-sim: cannot write the EEPROM to " << save_eeprom_file << "\n";
         return 2;
       }

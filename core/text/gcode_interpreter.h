@@ -201,7 +201,7 @@ class GcodeInterpreter : private GcodeRetractionSlot<Retract> {  // empty withou
   static void set_marlin_dwell(bool marlin) { marlin_dwell_ = marlin; }
 
   // The firmware retraction's settings and state (Marlin's defaults
-  // without Retract); new settings keep the state (nothing without it).
+  // without Retract); settings put in keep the state (ignored without it).
   using Retraction = GcodeRetraction;
   Retraction retraction() const { return retraction_of(*this); }
   void set_retraction(const Retraction& r) { set_retraction_of(*this, r); }

@@ -103,7 +103,7 @@ void defaults(Values& b) {
     const Entry e = Table::at(i);
     const uint32_t spm = board::Axes::steps_per_m_at(e.axis);
     uint32_t v;
-    if (board::kPinPolarities && e.kind <= Kind::limit_invert)  // the pins as the board has them
+    if (Table::has(kPinPolarities) && e.kind <= Kind::limit_invert)  // the pins as the board has them
       v = 0;
     else if (e.kind == Kind::junction)
       v = path::kJunctionDeviationUm;
@@ -197,7 +197,7 @@ void apply(const Values& b) {
   gcode::rescale();
   path::set_junction_um(value<Kind::junction>(b));
   reply::set_marlin(value<Kind::protocol>(b) != 0);  // from the next line on (board::kProtocolSwitch)
-  if (board::kPinPolarities)
+  if (Table::has(kPinPolarities))
     engine::set_polarities(uint8_t(value<Kind::dir_invert>(b)),
                            Endstops::count && value<Kind::limit_invert>(b) ? Endstops::pins : 0);
   // The block's gains are within HeaterPid's ranges (the table's: validate()).

@@ -3,7 +3,6 @@
 // the keypad model pressing keys through the firmware's own scan, and the
 // spindle model; time in simulated seconds.
 #pragma once
-#include <simavr/avr_eeprom.h>
 #include <simavr/sim_avr.h>
 
 #include <memory>
@@ -26,11 +25,7 @@ struct PanelRig {
   PanelRig(const char* name, const std::vector<uint8_t>& eeprom, const sim::SpindleParams& sp,
            const sim::KeypadTiming& keypad = sim::KeypadTiming())
       : m(new sim::Machine(image(name))) {
-    if (!eeprom.empty()) {
-      std::vector<uint8_t> bytes = eeprom;
-      avr_eeprom_desc_t d{bytes.data(), 0, uint32_t(bytes.size())};
-      avr_ioctl(m->avr(), AVR_IOCTL_EEPROM_SET, &d);
-    }
+    if (!eeprom.empty()) m->set_eeprom(eeprom);
     lcd.reset(new sim::LcdModel(*m));
     keys.reset(new sim::KeypadModel(*m, keypad));
     spindle.reset(new sim::SpindleEncoder(*m, sp));
@@ -45,11 +40,7 @@ struct PanelRig {
   std::string row0() const { return lcd->row(0); }
   std::string row1() const { return lcd->row(1); }
   // The first `bytes` of the EEPROM (the settings block).
-  std::vector<uint8_t> eeprom(uint32_t bytes) {
-    avr_eeprom_desc_t d{nullptr, 0, bytes};
-    avr_ioctl(m->avr(), AVR_IOCTL_EEPROM_GET, &d);
-    return d.ee ? std::vector<uint8_t>(d.ee, d.ee + bytes) : std::vector<uint8_t>();
-  }
+  std::vector<uint8_t> eeprom(uint32_t bytes) { return m->eeprom(bytes); }
 };
 
 }  // namespace simtest

@@ -12,7 +12,6 @@
 #include <regex>
 #include <string>
 
-#include <avr_eeprom.h>
 #include <sim_avr.h>
 #include <sys/wait.h>
 
@@ -296,16 +295,13 @@ TEST(Heater, TheUnoHasNoHeater) {
 TEST(Heater, M500StoresTheGainsAndABootTakesThemBack) {
   constexpr uint32_t kBytes = 16;
   const auto eeprom_of = [](sim::Machine& m) {
-    // (simavr's EEPROM ioctls answer -1 whether they worked or not.)
-    avr_eeprom_desc_t d{nullptr, 0, kBytes};
-    avr_ioctl(m.avr(), AVR_IOCTL_EEPROM_GET, &d);
-    EXPECT_NE(d.ee, nullptr);
-    return d.ee ? std::vector<uint8_t>(d.ee, d.ee + kBytes) : std::vector<uint8_t>(kBytes, 0xFF);
+    std::vector<uint8_t> bytes = m.eeprom(kBytes);
+    EXPECT_EQ(bytes.size(), size_t(kBytes));
+    return bytes;
   };
   const auto boot_with = [](std::vector<uint8_t> bytes) {
     std::unique_ptr<sim::Machine> m(new sim::Machine(simtest::image("m32")));
-    avr_eeprom_desc_t d{bytes.data(), 0, uint32_t(bytes.size())};
-    avr_ioctl(m->avr(), AVR_IOCTL_EEPROM_SET, &d);
+    m->set_eeprom(bytes);
     m->serial().add_line("M301");
     EXPECT_EQ(m->run_script(uint64_t(m->f_cpu()) * 2), sim::RunEnd::done);
     return m->serial().messages().back();

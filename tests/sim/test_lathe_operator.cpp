@@ -5,7 +5,6 @@
 // with every screen checked, both passes against the independent helix check
 // (sim/lathe_check.h) while the screen is being written; the settings menu
 // through the EEPROM and back; a corrupted settings block.
-#include <simavr/avr_eeprom.h>
 #include <simavr/sim_avr.h>
 
 #include <cstdio>

@@ -7,9 +7,6 @@
 // left in the text of its lines, and grbl's after `$200=0` with them taken.
 // The other suites run their parts on the m32 images (test_realtime.cpp
 // runs this one too).
-#include <avr_eeprom.h>
-#include <sim_avr.h>
-
 #include <cstdlib>
 #include <memory>
 #include <string>
@@ -21,20 +18,6 @@
 namespace {
 
 const char kImage[] = "m1284";
-constexpr uint32_t kEepromBytes = 4096;
-
-std::vector<uint8_t> eeprom_of(sim::Machine& m) {
-  avr_eeprom_desc_t d{nullptr, 0, kEepromBytes};
-  avr_ioctl(m.avr(), AVR_IOCTL_EEPROM_GET, &d);
-  EXPECT_NE(d.ee, nullptr);
-  return d.ee ? std::vector<uint8_t>(d.ee, d.ee + kEepromBytes) : std::vector<uint8_t>();
-}
-
-void set_eeprom(sim::Machine& m, std::vector<uint8_t> bytes) {
-  avr_eeprom_desc_t d{bytes.data(), 0, uint32_t(bytes.size())};
-  avr_ioctl(m.avr(), AVR_IOCTL_EEPROM_SET, &d);
-}
-
 // Sends `lines` and runs until they are answered and motion has ended;
 // returns the index of the first new response.
 size_t send(sim::Machine& m, const std::vector<std::string>& lines, double seconds = 20) {
@@ -123,19 +106,36 @@ TEST(M1284, LimitInvertHomesOnNormallyClosedSwitchesFromEitherSide) {
   EXPECT_EQ(m.axis('X')->position, 1000);  // the back-off away from it, and no further
 }
 
-// A normally-closed switch met by a move (soft limits off): the steps stop
-// within one step of it, the machine refuses the next move, M999 unlocks.
+// A normally-closed switch met by a move (soft limits off), at switch
+// positions from the first step on and feeds from a crawl to the top rate,
+// clean and bouncing: the steps stop at the switch's step, the machine
+// refuses the next move, M999 unlocks.
 TEST(M1284, AHardLimitOnANormallyClosedSwitchStopsAtIt) {
-  sim::Machine m(simtest::image(kImage));
-  sim::EndstopParams nc;
-  nc.normally_closed = true;
-  sim::Endstops switches(m, nc);
-  switches.set_position('X', -3000);
-  const size_t first = send(m, {"$5=1", "$20=0", "G1 X-10 F1200", "M400", "G1 X1"}, 30);
-  ASSERT_TRUE(ok(m, first + 1));
-  EXPECT_EQ(m.axis('X')->position, -3000);  // the switch closes at -3000: that step is the last
-  EXPECT_FALSE(ok(m, first + 4));
-  EXPECT_TRUE(ok(m, send(m, {"M999", "G1 X0 F1200"}) + 1));
+  int runs = 0;
+  for (const int64_t at : {-1L, -777L, -3000L}) {
+    for (const int feed : {60, 1200, 2400}) {
+      for (const double bounce_us : {0.0, 200.0}) {
+        sim::Machine m(simtest::image(kImage));
+        sim::EndstopParams nc;
+        nc.normally_closed = true;
+        nc.bounce_us = bounce_us;
+        sim::Endstops switches(m, nc);
+        switches.set_position('X', at);
+        const std::string where = "switch at " + std::to_string(at) + ", F" + std::to_string(feed) + ", bounce " +
+                                  std::to_string(int(bounce_us)) + " us";
+        const size_t first =
+            send(m, {"$5=1", "$20=0", "G1 X-4 F" + std::to_string(feed), "M400", "G1 X1"}, 10);
+        ASSERT_TRUE(ok(m, first + 2)) << where;
+        // The switch closes at `at` (X's pin, INT0, latches the closing
+        // edge): that step is the last.
+        EXPECT_EQ(m.axis('X')->position, at) << where;
+        EXPECT_FALSE(ok(m, first + 4)) << where;
+        EXPECT_TRUE(ok(m, send(m, {"M999", "G1 X0 F2400"}) + 1)) << where;
+        ++runs;
+      }
+    }
+  }
+  EXPECT_EQ(runs, 18);
 }
 
 // The machine codes' settings are in the block here: the heater's gains
@@ -166,9 +166,9 @@ TEST(M1284, M500StoresTheMachineCodesSettingsInForce) {
     const size_t first = send(m, codes);
     for (size_t i = 0; i < codes.size(); ++i) EXPECT_TRUE(ok(m, first + i)) << codes[i];
     expect_listed(m, changed, "in force before M500");
-    unsaved = eeprom_of(m);
+    unsaved = m.eeprom();
     ASSERT_TRUE(ok(m, send(m, {"M500"})));
-    saved = eeprom_of(m);
+    saved = m.eeprom();
   }
   size_t written = 0;
   for (size_t i = 0; i < saved.size(); ++i)
@@ -176,12 +176,12 @@ TEST(M1284, M500StoresTheMachineCodesSettingsInForce) {
   EXPECT_LE(written, 4u + 4u * 43 + 2);  // header, 43 values, sum (docs/settings.md)
   {
     sim::Machine m(simtest::image(kImage));
-    set_eeprom(m, unsaved);
+    m.set_eeprom(unsaved);
     send(m, {"M503"});
     expect_listed(m, defaults, "after a power cycle without M500");
   }
   sim::Machine m(simtest::image(kImage));
-  set_eeprom(m, saved);
+  m.set_eeprom(saved);
   send(m, {"M503", "M301", "M83", "G10", "M400", "M114"});
   expect_listed(m, changed, "after a power cycle with M500");
   EXPECT_NE(last_starting(m, "echo: p:30.50 i:2.25 d:100.00"), "");

@@ -68,7 +68,7 @@ TEST(PrinterCodes, EveryCodeIsAnsweredAsTheDocsSay) {
     }
   }
   const sim::SerialHost& h = m->serial();
-  for (const std::string& text :
+  for (const char* text :
        {"echo:Progress: 42% 17 min left", "echo:Progress:", "echo:Hello printer", "echo:FR:100%", "echo:FR:150%",
         "echo:E0 Flow: 95%", "echo:X held within the board's limit", "echo:E held within the board's limit",
         "echo:Unknown command: \"M303 S200\"", "echo:Unknown command: \"M140 S60\"",

@@ -5,7 +5,6 @@
 // a Marlin host's numbered and checksummed exchange after it, the style kept
 // through a power cycle, the way back, M503 against `$$`, M502, M501 and
 // M500 against what the EEPROM holds, a corrupt block.
-#include <avr_eeprom.h>
 #include <sim_avr.h>
 
 #include <cmath>
@@ -29,21 +28,15 @@ const char kGrblCorrupt[] = "[MSG:EEPROM settings corrupt: defaults loaded]";
 const char kMarlinCorrupt[] = "echo:EEPROM settings corrupt: defaults loaded";
 
 std::vector<uint8_t> eeprom_of(sim::Machine& m) {
-  avr_eeprom_desc_t d{nullptr, 0, kBytes};
-  avr_ioctl(m.avr(), AVR_IOCTL_EEPROM_GET, &d);
-  EXPECT_NE(d.ee, nullptr);
-  return d.ee ? std::vector<uint8_t>(d.ee, d.ee + kBytes) : std::vector<uint8_t>(kBytes, 0xFF);
-}
-
-void set_eeprom(sim::Machine& m, std::vector<uint8_t> bytes) {
-  avr_eeprom_desc_t d{bytes.data(), 0, uint32_t(bytes.size())};
-  avr_ioctl(m.avr(), AVR_IOCTL_EEPROM_SET, &d);
+  std::vector<uint8_t> bytes = m.eeprom(kBytes);
+  EXPECT_EQ(bytes.size(), kBytes);
+  return bytes;
 }
 
 // A fresh machine (its EEPROM `bytes`, or erased), booted: nothing sent yet.
 std::unique_ptr<sim::Machine> machine(const std::vector<uint8_t>& bytes = {}) {
   std::unique_ptr<sim::Machine> m(new sim::Machine(simtest::image(kImage)));
-  if (!bytes.empty()) set_eeprom(*m, bytes);
+  if (!bytes.empty()) m->set_eeprom(bytes);
   return m;
 }
 
@@ -326,7 +319,7 @@ TEST(ProtocolSwitch, M502RestoresM501ReloadsM500Stores) {
   // while it runs: M501 takes it.
   auto other = machine();
   send(*other, {"$200=1", "$100=250"});
-  set_eeprom(*m, eeprom_of(*other));
+  m->set_eeprom(eeprom_of(*other));
   rx = m->serial().received().size();
   send(*m, {"M501", "M503"});
   M503 loaded = read_m503(received_from(*m, rx), "echo:");
@@ -339,7 +332,7 @@ TEST(ProtocolSwitch, M502RestoresM501ReloadsM500Stores) {
   // style is kept (this is still the Marlin host's session).
   std::vector<uint8_t> torn = eeprom_of(*other);
   torn[4 + 4 * 6] ^= 0x10;
-  set_eeprom(*m, torn);
+  m->set_eeprom(torn);
   rx = m->serial().received().size();
   send(*m, {"M501", "M503"});
   const std::vector<std::string> after = received_from(*m, rx);

@@ -6,9 +6,6 @@
 // so its EEPROM holds `$200=0` from the start): `?` mid-move reports where the motors are, `!` slows the move
 // to rest at its acceleration and `~` finishes it exactly, Ctrl-X stops the
 // steps at once and restarts the chip.
-#include <avr_eeprom.h>
-#include <sim_avr.h>
-
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -45,19 +42,13 @@ std::vector<uint8_t> grbl_style_eeprom(const char* name) {
   sim::Machine m(simtest::image(name));
   m.serial().add_line("$200=0");
   EXPECT_EQ(m.run_script(uint64_t(kTick)), sim::RunEnd::done);
-  avr_eeprom_desc_t d{nullptr, 0, 512};
-  avr_ioctl(m.avr(), AVR_IOCTL_EEPROM_GET, &d);
-  return d.ee ? std::vector<uint8_t>(d.ee, d.ee + 512) : std::vector<uint8_t>();
+  return m.eeprom();
 }
 
 // A fresh machine of the image, in grbl's style from its banner on.
 std::unique_ptr<sim::Machine> machine(const Image& im) {
   std::unique_ptr<sim::Machine> m(new sim::Machine(simtest::image(im.name)));
-  if (im.marlin_default) {
-    std::vector<uint8_t> ee = grbl_style_eeprom(im.name);
-    avr_eeprom_desc_t d{ee.data(), 0, uint32_t(ee.size())};
-    avr_ioctl(m->avr(), AVR_IOCTL_EEPROM_SET, &d);
-  }
+  if (im.marlin_default) m->set_eeprom(grbl_style_eeprom(im.name));
   return m;
 }
 

@@ -3,7 +3,6 @@
 // changing what the pins do, refusals that change nothing, the block kept
 // through a power cycle, and a corrupt or older block loading the defaults
 // with one line that says so.
-#include <avr_eeprom.h>
 #include <sim_avr.h>
 
 #include <cmath>
@@ -23,19 +22,16 @@ const char kCorrupt[] = "[MSG:EEPROM settings corrupt: defaults loaded]";
 const char kOlder[] = "[MSG:EEPROM settings of another version: defaults loaded]";
 
 std::vector<uint8_t> eeprom_of(sim::Machine& m, uint32_t bytes = kBytes) {
-  // (simavr's EEPROM ioctls answer -1 whether they worked or not.)
-  avr_eeprom_desc_t d{nullptr, 0, bytes};
-  avr_ioctl(m.avr(), AVR_IOCTL_EEPROM_GET, &d);
-  EXPECT_NE(d.ee, nullptr);
-  return d.ee ? std::vector<uint8_t>(d.ee, d.ee + bytes) : std::vector<uint8_t>(bytes, 0xFF);
+  std::vector<uint8_t> got = m.eeprom(bytes);
+  EXPECT_EQ(got.size(), bytes);
+  return got;
 }
 
 // A fresh machine whose EEPROM starts as `bytes`, running `lines`.
 std::unique_ptr<sim::Machine> boot_with(std::vector<uint8_t> bytes, const std::vector<std::string>& lines,
                                         double seconds = 5) {
   std::unique_ptr<sim::Machine> m(new sim::Machine(simtest::image(kImage)));
-  avr_eeprom_desc_t d{bytes.data(), 0, uint32_t(bytes.size())};
-  avr_ioctl(m->avr(), AVR_IOCTL_EEPROM_SET, &d);
+  m->set_eeprom(bytes);
   for (const std::string& l : lines) m->serial().add_line(l);
   EXPECT_EQ(m->run_script(uint64_t(seconds * m->f_cpu())), sim::RunEnd::done);
   return m;

@@ -13,6 +13,7 @@
 #include "../../services/heater_codes.h"
 #include "../../services/homing.h"
 #include "../../services/printer_codes.h"
+#include "gcode_axes.h"
 #include "pending.h"
 #include "reply.h"
 
@@ -21,59 +22,13 @@ namespace {
 
 constexpr uint8_t kAxes = board::Axes::count;
 
-// M350 modes an axis type takes (as AxisModes applies them).
-template <typename A>
-constexpr auto modes_of(int, int) -> decltype(A::set_mode(0), uint8_t()) {
-  return am::kModesShield;
-}
-template <typename A>
-constexpr auto modes_of(int, long) -> decltype(A::sequencer, uint8_t()) {
-  return am::kModesUnipolar;
-}
-template <typename A>
-constexpr uint8_t modes_of(long, long) {
-  return 0;
-}
-
-template <typename Set>
-struct AxisTable;
-// Const (the compiler folds its scales) unless a board's settings set them.
-template <bool Settable>
-struct TableEntry {
-  using type = const am::GcodeAxis;
-};
-template <>
-struct TableEntry<true> {
-  using type = am::GcodeAxis;
-};
-template <typename... A>
-struct AxisTable<AxisSet<A...>> {
-  static typename TableEntry<board::kSettings>::type value[sizeof...(A)];
-};
-// Scales in the planner's position units (1/64 full step on coil axes), so a
-// target means the same whatever the excitation mode. A board with settings
-// (board::kSettings) sets each axis's scale from its steps/mm (set_scale()).
-template <typename... A>
-typename TableEntry<board::kSettings>::type AxisTable<AxisSet<A...>>::value[sizeof...(A)] = {
-    am::GcodeAxis{A::name, modes_of<A>(0, 0), A::descriptor().steps_per_m * OwnUnits<A>::per_full_step}...};
-
-// Built on first use, so a board without G-code links none of it. A board
-// without arcs (board::kArcs: flash) refuses G2/G3 whole (arcs_not_here),
-// one without a heater its M-codes (no_heater).
-// Whether any axis has excitation modes (M350).
-template <typename Set>
-struct AnyModes;
-template <typename... A>
-struct AnyModes<AxisSet<A...>> {
-  static constexpr uint8_t all[sizeof...(A)] = {modes_of<A>(0, 0)...};
-  static constexpr bool value(uint8_t i = 0) { return i < sizeof...(A) && (all[i] != 0 || value(uint8_t(i + 1))); }
-};
-constexpr bool kModes = AnyModes<board::Axes>::value();
-
 // A Marlin host's G4 P is milliseconds (G4 S seconds), chosen with the
 // style where it is chosen at run time (board::kProtocolSwitch); a board
 // whose axes have no excitation modes refuses M350 whole.
 constexpr uint8_t kDwell = board::kProtocolSwitch ? am::kDwellChosen : uint8_t(reply::kMarlin);
+// Built on first use, so a board without G-code links none of it. A board
+// without arcs (board::kArcs: flash) refuses G2/G3 whole (arcs_not_here),
+// one without a heater its M-codes (no_heater).
 using Interpreter =
     am::GcodeInterpreter<kAxes, board::kArcs, board::kHeater, kDwell, kModes, board::kHeater && board::kPrinterCodes,
                          board::kFirmwareRetract>;
@@ -81,62 +36,6 @@ Interpreter& interpreter() {
   static Interpreter instance(AxisTable<board::Axes>::value);
   return instance;
 }
-// The error texts and their pointers in flash (docs/gcode.md: a switch over
-// PSTR()s would become a pointer table in RAM). A board without a heater
-// can only meet no_heater of the heater's errors (one with a heater never
-// meets it), one without arcs none of the arc's geometry errors, one
-// without excitation modes none of M350's (unless it has the direct MODE
-// command, which answers with them): the others point at an empty text,
-// and the linker drops theirs.
-#define AM_ERROR_TEXT(name, text) const char name##_text[] PROGMEM = text;
-AM_GCODE_ERRORS(AM_ERROR_TEXT)
-#undef AM_ERROR_TEXT
-const char kNoText[] PROGMEM = "";
-constexpr bool reachable(am::GcodeError e) {
-  using E = am::GcodeError;
-  return (board::kHeater || e < E::heater_code_alone || e > E::bad_limit) && !(board::kHeater && e == E::no_heater) &&
-         (board::kArcs || e < E::arc_zero_radius || e > E::arc_full_circle_r) &&
-         (kModes || board::kCommands || (e != E::bad_mode && e != E::axis_has_no_modes && e != E::mode_not_available));
-}
-#define AM_ERROR_POINTER(name, text) reachable(am::GcodeError::name) ? name##_text : kNoText,
-const char* const kErrorText[] PROGMEM = {AM_GCODE_ERRORS(AM_ERROR_POINTER)};
-#undef AM_ERROR_POINTER
-
-// Each error's grbl number (reply.h, docs/protocol.md); the grbl images
-// alone link the table.
-constexpr uint8_t grbl_code(am::GcodeError e) {
-  using E = am::GcodeError;
-  namespace c = reply::code;
-  return e == E::bad_character ? c::expected_letter
-         : e == E::bad_comment ? c::comment_open
-         : e == E::unsupported_word || e == E::unsupported_code || e == E::no_such_axis || e == E::arcs_not_here ||
-                 e == E::no_heater
-             ? c::unsupported
-         : e == E::bad_number ? c::bad_number
-         : e == E::out_of_range ? c::out_of_range
-         : e == E::bad_line_number ? c::bad_line_number
-         : e == E::modal_group_conflict ? c::modal_group
-         : e == E::repeated_word ? c::repeated_word
-         : e == E::axis_conflict ? c::axis_conflict
-         : e == E::multiple_actions ? c::several_actions
-         : e == E::missing_axis_word ? c::no_axis_words
-         : e == E::missing_dwell_time ? c::value_missing
-         : e == E::missing_arc_words ? c::no_offsets
-         : e == E::arc_mixed_form ? c::arc_mixed
-         : e == E::unused_word ? c::unused_words
-         : e == E::bad_feed ? c::undefined_feed
-         : e == E::arc_zero_radius ? c::arc_radius
-         : e == E::arc_radius_mismatch || e == E::arc_radius_too_small || e == E::arc_full_circle_r ||
-                 e == E::target_out_of_range
-             ? c::invalid_target
-         : e == E::bad_mode ? c::bad_mode
-         : e == E::axis_has_no_modes ? c::no_modes
-         : e == E::mode_not_available ? c::mode_unavailable
-                                      : c::heater;  // the heater's, a Marlin board's
-}
-#define AM_GRBL_CODE(name, text) grbl_code(am::GcodeError::name),
-const uint8_t kGrblCode[] PROGMEM = {AM_GCODE_ERRORS(AM_GRBL_CODE)};
-#undef AM_GRBL_CODE
 
 // The accepted line's (pending.h), until execute() has run it.
 constexpr am::GcodeAction<kAxes>& action = pending::line.action;
@@ -283,11 +182,6 @@ bool claims(const char* line) {
   if (c != 'G' && c != 'M' && c != 'N') return false;
   while (*line == ' ' || *line == '\t') ++line;
   return (*line >= '0' && *line <= '9') || *line == '-' || *line == '+' || *line == '.';
-}
-
-void refuse(am::GcodeError e) {
-  reply::error(reply::marlin() ? 0 : pgm_read_byte(&kGrblCode[uint8_t(e)]),
-               reinterpret_cast<const char*>(pgm_read_word(&kErrorText[uint8_t(e)])));
 }
 
 bool accept(const char* line) {
